@@ -1,0 +1,496 @@
+/* driver.c -- the integration loop.  It owns nothing method-specific:
+   it takes steps through a stepper table (fixed or adaptive h), accepts or
+   rejects them, hands rows to the output sink (step points, refined points
+   or requested output times, all from the stepper's own dense output), and
+   locates events on that dense output. */
+#include "sym.h"
+#include "control.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+  const sym_stepper_type *type;
+  void *state;
+  sym_system *sys;
+  const sym_driver_opts *o;
+  int n;
+  double dir;
+  /* events */
+  double *vold, *vnew, *vtry;
+  int *term, *edir;
+  double *ydense;
+  /* next requested output time index (ntout > 2) */
+  int iout;
+} run_t;
+
+static int
+emit (run_t *r, double t, const double *y)
+{
+  int st = r->o->output ? r->o->output (t, y, r->o->output_user) : 0;
+  if (st < 0)
+    return SYM_EOUTPUT;
+  return st > 0 ? SYM_STOP_OUTPUT : SYM_SUCCESS;
+}
+
+static int
+call_events (run_t *r, double t, const double *y, double *v)
+{
+  int st = r->o->events (t, y, v, r->term, r->edir, r->o->event_user);
+  if (st)
+    {
+      r->sys->fail_t = t;
+      r->sys->fail_status = st;
+      return st > 0 ? SYM_RECOVERABLE : SYM_ECALLBACK;
+    }
+  return SYM_SUCCESS;
+}
+
+/* Does event k cross zero from a to b in its selected direction? */
+static int
+crosses (double a, double b, int direction)
+{
+  if (a == 0 || isnan (a) || isnan (b))
+    return 0;
+  int up = a < 0 && b >= 0, down = a > 0 && b <= 0;
+  if (direction > 0)
+    return up;
+  if (direction < 0)
+    return down;
+  return up || down;
+}
+
+/* Locate the zero of event k in (ta, tb] on the dense output by the
+   Illinois variant of regula falsi, bisecting when it stalls; stop at a
+   bracket of a few ulps.  ga, gb: values at ta, tb. */
+static int
+locate (run_t *r, int k, double ta, double ga, double tb, double gb,
+        double *te)
+{
+  int side = 0;
+  for (int it = 0; it < 200; it++)
+    {
+      double width = fabs (tb - ta);
+      if (width <= 4 * DBL_EPSILON * fmax (fabs (ta), fabs (tb))
+          || width <= DBL_MIN)
+        break;
+      double tm;
+      if (it % 4 == 3)
+        tm = 0.5 * (ta + tb);    /* guaranteed progress */
+      else
+        tm = tb - gb * (tb - ta) / (gb - ga);
+      if (! (tm > fmin (ta, tb) && tm < fmax (ta, tb)))
+        tm = 0.5 * (ta + tb);
+      int st = r->type->dense (r->state, r->sys, tm, r->ydense);
+      if (! st)
+        st = call_events (r, tm, r->ydense, r->vtry);
+      if (st)
+        return st;
+      double gm = r->vtry[k];
+      if (gm == 0)
+        {
+          ta = tb = tm;
+          ga = gb = 0;
+          break;
+        }
+      if ((gm < 0) == (ga < 0))
+        {
+          ta = tm;
+          ga = gm;
+          if (side == -1)
+            gb *= 0.5;
+          side = -1;
+        }
+      else
+        {
+          tb = tm;
+          gb = gm;
+          if (side == 1)
+            ga *= 0.5;
+          side = 1;
+        }
+    }
+  /* the end after the crossing: the event has happened there */
+  *te = tb;
+  return SYM_SUCCESS;
+}
+
+/* Find the events in the accepted step (t, tnew]; report them in time
+   order up to and including the first terminal one.  *tstop is set to the
+   terminal event's time (or stays NAN). */
+static int
+handle_events (run_t *r, double t, double tnew, double *tstop)
+{
+  const sym_driver_opts *o = r->o;
+  int ne = o->nevents;
+  /* found events: simple insertion into arrays sorted by time */
+  double tfound[64];
+  int kfound[64];
+  int nf = 0;
+  for (int k = 0; k < ne; k++)
+    {
+      if (! crosses (r->vold[k], r->vnew[k], r->edir[k]))
+        continue;
+      double te;
+      int st = locate (r, k, t, r->vold[k], tnew, r->vnew[k], &te);
+      if (st)
+        return st;
+      if (nf < 64)
+        {
+          int j = nf++;
+          while (j > 0 && r->dir * (tfound[j - 1] - te) > 0)
+            {
+              tfound[j] = tfound[j - 1];
+              kfound[j] = kfound[j - 1];
+              j--;
+            }
+          tfound[j] = te;
+          kfound[j] = k;
+        }
+    }
+  for (int j = 0; j < nf; j++)
+    {
+      int st = r->type->dense (r->state, r->sys, tfound[j], r->ydense);
+      if (st)
+        return st;
+      if (o->event_out)
+        {
+          st = o->event_out (tfound[j], r->ydense, kfound[j], o->event_user);
+          if (st < 0)
+            return SYM_EOUTPUT;
+        }
+      if (r->term[kfound[j]])
+        {
+          *tstop = tfound[j];
+          break;
+        }
+    }
+  return SYM_SUCCESS;
+}
+
+/* Rows for the accepted step (t, tnew] up to tstop (a terminal event time,
+   or NAN). */
+static int
+output_step (run_t *r, double t, double h, double tnew, const double *ynew,
+             double tstop)
+{
+  const sym_driver_opts *o = r->o;
+  int stopped = ! isnan (tstop);
+  double tlim = stopped ? tstop : tnew;
+  int st;
+  if (o->ntout > 2)
+    {
+      while (r->iout < o->ntout && r->dir * (o->tout[r->iout] - tlim) <= 0)
+        {
+          double to = o->tout[r->iout];
+          if (to == tnew)
+            st = emit (r, to, ynew);
+          else
+            {
+              st = r->type->dense (r->state, r->sys, to, r->ydense);
+              if (st)
+                return st;
+              st = emit (r, to, r->ydense);
+            }
+          r->iout++;
+          if (st)
+            return st;
+        }
+    }
+  else
+    {
+      for (int j = 1; j < o->refine; j++)
+        {
+          double ti = t + h * j / o->refine;
+          if (r->dir * (ti - tlim) >= 0)
+            break;
+          st = r->type->dense (r->state, r->sys, ti, r->ydense);
+          if (st)
+            return st;
+          if ((st = emit (r, ti, r->ydense)))
+            return st;
+        }
+      if (! stopped && (st = emit (r, tnew, ynew)))
+        return st;
+    }
+  if (stopped)
+    {
+      /* the event row ends the output, as in ode45 */
+      st = r->type->dense (r->state, r->sys, tstop, r->ydense);
+      if (st)
+        return st;
+      if (o->ntout > 2 && r->iout > 0 && o->tout[r->iout - 1] == tstop)
+        return SYM_SUCCESS;   /* already there */
+      return emit (r, tstop, r->ydense);
+    }
+  return SYM_SUCCESS;
+}
+
+/* Map a recoverable cause that can no longer be cured to a fatal status. */
+static int
+fatal_from (int cause)
+{
+  switch (cause)
+    {
+    case SYM_NONFINITE: return SYM_ENONFINITE;
+    case SYM_NEWTON_FAIL:
+    case SYM_SINGULAR: return SYM_ENEWTON;
+    default: return SYM_ESTEPSIZE;
+    }
+}
+
+int
+sym_integrate (const sym_stepper_type *type, sym_system *sys,
+               const sym_method_opts *mopts, const sym_driver_opts *o,
+               const double *y0, double *t_reached)
+{
+  const int n = 2 * sys->dim;
+  run_t r;
+  memset (&r, 0, sizeof (r));
+  r.type = type;
+  r.sys = sys;
+  r.o = o;
+  r.n = n;
+  if (t_reached)
+    *t_reached = o->t0;
+  if (sys->dim < 1 || ! sys->rhs || ! (o->tf != o->t0)
+      || ! isfinite (o->t0) || ! isfinite (o->tf))
+    return SYM_EBADINPUT;
+  r.dir = o->tf > o->t0 ? 1.0 : -1.0;
+  const int fixed = o->h_fixed > 0 || o->nsteps_fixed > 0;
+  if (! fixed && (! (o->rtol > 0) || ! o->atol || o->atol_len < 1))
+    return SYM_EBADINPUT;
+  if (o->ntout > 2 && (! o->tout || o->tout[0] != o->t0))
+    return SYM_EBADINPUT;
+
+  sym_method_opts mo = *mopts;
+  mo.want_error = ! fixed;
+  mo.want_dense = mopts->want_dense || o->ntout > 2 || o->refine > 1
+                  || o->nevents > 0;
+  int st = SYM_SUCCESS;
+  r.state = type->alloc (sys, &mo, &st);
+  if (! r.state)
+    return st ? st : SYM_ENOMEM;
+
+  int ne = o->nevents > 0 ? o->nevents : 0;
+  double *work = sym_calloc ((size_t) 6 * n + 3 * (size_t) ne + 1,
+                             sizeof (double));
+  int *iwork = sym_calloc ((size_t) 2 * ne + 1, sizeof (int));
+  if (! work || ! iwork)
+    {
+      sym_free (work);
+      sym_free (iwork);
+      type->free (r.state);
+      return SYM_ENOMEM;
+    }
+  double *y = work, *ynew = work + n, *yerr = work + 2 * n;
+  double *ftmp = work + 3 * n;    /* 2n: initial step work */
+  r.ydense = work + 5 * n;
+  r.vold = work + 6 * n;
+  r.vnew = r.vold + ne;
+  r.vtry = r.vnew + ne;
+  r.term = iwork;
+  r.edir = iwork + ne;
+  memcpy (y, y0, (size_t) n * sizeof (double));
+
+  double t = o->t0;
+  int result = SYM_DONE;
+
+  /* first row and first event values */
+  if (o->ntout > 2)
+    r.iout = 1;
+  st = emit (&r, t, y);
+  if (st)
+    {
+      result = st;
+      goto done;
+    }
+  if (ne && o->events)
+    {
+      st = call_events (&r, t, y, r.vold);
+      if (st)
+        {
+          result = st < 0 ? st : SYM_ECALLBACK;
+          goto done;
+        }
+    }
+
+  /* the end of the run */
+  double tend = o->tf;
+  long nfixed = 0;
+  double hfix = 0;
+  if (fixed)
+    {
+      if (o->nsteps_fixed > 0)
+        {
+          nfixed = o->nsteps_fixed;
+          hfix = o->h_fixed > 0 ? o->h_fixed : fabs (o->tf - o->t0) / nfixed;
+          tend = o->t0 + r.dir * hfix * nfixed;
+          if (o->h_fixed <= 0)
+            tend = o->tf;
+        }
+      else
+        {
+          hfix = o->h_fixed;
+          double ratio = fabs (o->tf - o->t0) / hfix;
+          nfixed = (long) ceil (ratio - 1e-9 * fmax (1.0, ratio));
+          if (nfixed < 1)
+            nfixed = 1;
+        }
+    }
+
+  double hmax = o->hmax > 0 && isfinite (o->hmax) ? o->hmax
+                : 0.1 * fabs (o->tf - o->t0);
+  double h = 0;
+  int q = type->err_order ? type->err_order (r.state) : type->order;
+  if (! fixed)
+    {
+      if (o->h0 > 0)
+        h = fmin (o->h0, hmax);
+      else
+        {
+          double *f0 = ynew;
+          st = sym_rhs (sys, t, y, f0);
+          if (st)
+            {
+              result = st < 0 ? st : fatal_from (st);
+              goto done;
+            }
+          st = sym_initial_step (sys, t, y, f0, r.dir, q, o->rtol, o->atol,
+                                 o->atol_len, hmax, ftmp, &h);
+          if (st)
+            {
+              result = st;
+              goto done;
+            }
+        }
+      h = fmin (h, fabs (tend - t));
+    }
+
+  long k = 0;                /* fixed: steps taken */
+  int last_rejected = 0;
+  for (;;)
+    {
+      double hs, tnew;
+      int last = 0;
+      if (fixed)
+        {
+          if (k >= nfixed)
+            break;
+          if (k == nfixed - 1)
+            {
+              tnew = tend;
+              last = 1;
+            }
+          else
+            tnew = o->t0 + r.dir * hfix * (double) (k + 1);
+          hs = tnew - t;
+        }
+      else
+        {
+          if (r.dir * (t - tend) >= 0)
+            break;
+          double rem = fabs (tend - t);
+          if (h >= rem || rem - h <= 1e-10 * rem)
+            {
+              h = rem;
+              last = 1;
+            }
+          if (h < 16 * DBL_EPSILON * fmax (fabs (t), fabs (tend))
+              && ! last)
+            {
+              result = SYM_ESTEPSIZE;
+              goto done;
+            }
+          hs = r.dir * h;
+          tnew = last ? tend : t + hs;
+        }
+      if (o->max_steps > 0 && sys->cnt.nsteps >= o->max_steps)
+        {
+          result = SYM_EMAXSTEPS;
+          goto done;
+        }
+
+      st = type->step (r.state, sys, t, hs, y, ynew, fixed ? NULL : yerr);
+      if (st < 0)
+        {
+          result = st;
+          goto done;
+        }
+      double err = 0;
+      if (st == 0 && ! fixed)
+        err = sym_error_norm (n, yerr, y, ynew, o->rtol, o->atol,
+                              o->atol_len, o->norm_control);
+      if (st > 0 || (! fixed && ! (err <= 1.0)))
+        {
+          sys->cnt.nfailed++;
+          if (fixed)
+            {
+              result = fatal_from (st > 0 ? st : SYM_NONFINITE);
+              goto done;
+            }
+          double fac = st > 0 ? 0.5 : sym_step_factor (err, q, 0.2, 1.0);
+          if (st == 0 && last_rejected)
+            fac = fmin (fac, 0.5);
+          h *= fac;
+          last_rejected = 1;
+          if (h < 16 * DBL_EPSILON * fmax (fabs (t), fabs (tend)))
+            {
+              result = st > 0 ? fatal_from (st) : SYM_ESTEPSIZE;
+              goto done;
+            }
+          continue;
+        }
+
+      /* accepted */
+      type->accept (r.state);
+      sys->cnt.nsteps++;
+      k++;
+
+      double tstop = NAN;
+      if (ne && o->events)
+        {
+          st = call_events (&r, tnew, ynew, r.vnew);
+          if (! st)
+            st = handle_events (&r, t, tnew, &tstop);
+          if (st)
+            {
+              result = st < 0 ? st : SYM_ECALLBACK;
+              goto done;
+            }
+        }
+      st = output_step (&r, t, hs, tnew, ynew, tstop);
+      if (st)
+        {
+          t = isnan (tstop) ? tnew : tstop;
+          result = st;
+          goto done;
+        }
+      if (! isnan (tstop))
+        {
+          t = tstop;
+          result = SYM_STOP_EVENT;
+          goto done;
+        }
+      t = tnew;
+      memcpy (y, ynew, (size_t) n * sizeof (double));
+      if (ne)
+        memcpy (r.vold, r.vnew, (size_t) ne * sizeof (double));
+      if (! fixed)
+        {
+          double fac = sym_step_factor (err, q, 0.2, last_rejected ? 1.0 : 5.0);
+          h = fmin (h * fac, hmax);
+          last_rejected = 0;
+        }
+      (void) last;
+    }
+
+done:
+  if (t_reached)
+    *t_reached = t;
+  sym_free (iwork);
+  sym_free (work);
+  type->free (r.state);
+  return result;
+}

@@ -1,0 +1,237 @@
+/* newton.c -- dense LU (LAPACK dgetrf/dgetrs) and the simplified Newton
+   iteration shared by the implicit steppers.
+
+   The iteration follows RADAU5: one LU serves many iterations and, while
+   convergence stays fast, many steps.  With dx_k the k-th correction and
+   theta_k = |dx_k| / |dx_{k-1}| the contraction rate, the distance to the
+   solution after dx_k is about theta/(1-theta) |dx_k|; we stop when that is
+   below tol.  Before theta is known, the eta = theta/(1-theta) of the last
+   solve stands in for it. */
+#include "sym.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+extern void dgetrf_ (const int *m, const int *n, double *a, const int *lda,
+                     int *ipiv, int *info);
+extern void dgetrs_ (const char *trans, const int *n, const int *nrhs,
+                     const double *a, const int *lda, const int *ipiv,
+                     double *b, const int *ldb, int *info);
+
+int
+sym_lu_init (sym_lu *lu, int n)
+{
+  lu->n = n;
+  lu->factored = 0;
+  lu->a = sym_malloc ((size_t) n * n * sizeof (double));
+  lu->ipiv = sym_malloc ((size_t) n * sizeof (int));
+  if (! lu->a || ! lu->ipiv)
+    {
+      sym_lu_free (lu);
+      return SYM_ENOMEM;
+    }
+  return SYM_SUCCESS;
+}
+
+void
+sym_lu_free (sym_lu *lu)
+{
+  sym_free (lu->ipiv);
+  sym_free (lu->a);
+  lu->ipiv = NULL;
+  lu->a = NULL;
+  lu->factored = 0;
+}
+
+int
+sym_lu_factor (sym_lu *lu, sym_counters *c)
+{
+  int info = 0;
+  if (c)
+    c->nlu++;
+  for (size_t i = 0; i < (size_t) lu->n * lu->n; i++)
+    if (! isfinite (lu->a[i]))
+      {
+        lu->factored = 0;
+        return SYM_NONFINITE;
+      }
+  dgetrf_ (&lu->n, &lu->n, lu->a, &lu->n, lu->ipiv, &info);
+  lu->factored = (info == 0);
+  return info == 0 ? SYM_SUCCESS : SYM_SINGULAR;
+}
+
+int
+sym_lu_solve (sym_lu *lu, double *b, sym_counters *c)
+{
+  int info = 0, one = 1;
+  if (! lu->factored)
+    return SYM_EBADINPUT;
+  if (c)
+    c->nsolve++;
+  dgetrs_ ("N", &lu->n, &one, lu->a, &lu->n, lu->ipiv, b, &lu->n, &info);
+  return info == 0 ? SYM_SUCCESS : SYM_EBADINPUT;
+}
+
+int
+sym_newton_init (sym_newton *nw, int n)
+{
+  memset (nw, 0, sizeof (*nw));
+  nw->n = n;
+  nw->tol = 1e-14;
+  nw->maxit = 10;
+  nw->eta = 1.0;
+  nw->r = sym_malloc ((size_t) 3 * n * sizeof (double));
+  if (! nw->r || sym_lu_init (&nw->lu, n))
+    {
+      sym_newton_free (nw);
+      return SYM_ENOMEM;
+    }
+  nw->dx = nw->r + n;
+  nw->x0 = nw->r + 2 * n;
+  return SYM_SUCCESS;
+}
+
+void
+sym_newton_free (sym_newton *nw)
+{
+  sym_lu_free (&nw->lu);
+  sym_free (nw->r);
+  nw->r = nw->dx = nw->x0 = NULL;
+}
+
+void
+sym_newton_invalidate (sym_newton *nw)
+{
+  nw->have_matrix = 0;
+  nw->lu.factored = 0;
+}
+
+static double
+scaled_norm (int n, const double *v, const double *scale)
+{
+  double m = 0.0;
+  for (int i = 0; i < n; i++)
+    {
+      double a = fabs (v[i]) / scale[i];
+      if (a > m || isnan (a))
+        m = a;
+    }
+  return m;
+}
+
+static int
+new_matrix (sym_newton *nw, const sym_newton_problem *p, const double *x,
+            sym_counters *c)
+{
+  int st = p->matrix (p->ctx, x, nw->lu.a);
+  if (st)
+    return st;
+  st = sym_lu_factor (&nw->lu, c);
+  nw->have_matrix = (st == SYM_SUCCESS);
+  nw->fresh = nw->have_matrix;
+  return st;
+}
+
+int
+sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
+                  const double *scale, sym_counters *c)
+{
+  const int n = nw->n;
+  /* Below this the corrections are round-off: accept. */
+  const double floor_tol = 16.0 * DBL_EPSILON;
+  int st;
+  int restarts = 0;
+  double eta = fmax (nw->eta, DBL_EPSILON);
+  eta = pow (eta, 0.8);   /* RADAU5: trust the old rate a little less */
+
+  nw->iters = 0;
+  nw->fresh = 0;
+  memcpy (nw->x0, x, (size_t) n * sizeof (double));
+  if (! nw->have_matrix)
+    {
+      st = new_matrix (nw, p, x, c);
+      if (st)
+        return st < 0 ? st : SYM_NEWTON_FAIL;
+    }
+
+  for (;;)
+    {
+      double dxold = 0.0, theta = 0.0;
+      int k;
+      int ok = 0, slow = 0;
+      for (k = 0; k < nw->maxit; k++)
+        {
+          st = p->residual (p->ctx, x, nw->r);
+          if (st)
+            return st;
+          for (int i = 0; i < n; i++)
+            nw->dx[i] = -nw->r[i];
+          st = sym_lu_solve (&nw->lu, nw->dx, c);
+          if (st)
+            return st;
+          for (int i = 0; i < n; i++)
+            x[i] += nw->dx[i];
+          if (c)
+            c->nnewton++;
+          nw->iters++;
+          double dxn = scaled_norm (n, nw->dx, scale);
+          if (! isfinite (dxn))
+            {
+              slow = 1;
+              break;
+            }
+          if (k > 0)
+            {
+              theta = dxn / fmax (dxold, DBL_MIN);
+              if (theta >= 0.99)
+                {
+                  if (dxn <= floor_tol)   /* stagnating at round-off */
+                    {
+                      ok = 1;
+                      break;
+                    }
+                  slow = 1;
+                  break;
+                }
+              eta = theta / (1.0 - theta);
+              /* predicted failure: the remaining iterations cannot reach
+                 tol at this rate */
+              if (pow (theta, nw->maxit - 1 - k) / (1.0 - theta) * dxn
+                  > 1e3 * nw->tol && k >= 2)
+                {
+                  slow = 1;
+                  break;
+                }
+            }
+          if (eta * dxn <= nw->tol || dxn <= floor_tol)
+            {
+              ok = 1;
+              break;
+            }
+          dxold = dxn;
+        }
+      if (ok)
+        {
+          nw->theta = theta;
+          nw->eta = eta;
+          return SYM_SUCCESS;
+        }
+      (void) slow;
+      /* Slow or diverging: with a stale matrix, refresh it once and go on;
+         with a fresh one, give up (the caller shrinks the step). */
+      if (nw->fresh || restarts > 0)
+        {
+          if (c)
+            c->nnewton_fail++;
+          nw->eta = 1.0;
+          return SYM_NEWTON_FAIL;
+        }
+      restarts++;
+      memcpy (x, nw->x0, (size_t) n * sizeof (double));
+      st = new_matrix (nw, p, x, c);
+      if (st)
+        return st < 0 ? st : SYM_NEWTON_FAIL;
+      eta = 1.0;
+    }
+}

@@ -1,0 +1,259 @@
+/* sym.h -- the public interface of the symplectic integration core.
+
+   Pure C99: nothing here knows of Octave.  The MEX layer (src/mex/) and the
+   C tests (tests/c/) are the two clients.
+
+   Conventions
+   - y = [q; p], q and p in R^d, n = 2d.  f(t, y) = [dH/dp; -dH/dq + F].
+   - Matrices are column-major (as Octave and LAPACK).
+   - Every function that can fail returns an int status: 0 success, > 0 a
+     recoverable failure (the driver rejects the step and shrinks h), < 0 a
+     fatal one (the driver stops and reports it).  Named codes below.
+   - Every allocation goes through sym_malloc/sym_free (see sym_set_allocator)
+     so the MEX build can route it to mxMalloc: an error thrown inside a user
+     callback then leaks nothing. */
+#ifndef SYM_H
+#define SYM_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- status */
+enum {
+  SYM_SUCCESS = 0,
+  /* > 0: recoverable (retry with a smaller step) */
+  SYM_RECOVERABLE = 1,     /* a callback asked for a smaller step */
+  SYM_NONFINITE = 2,       /* a callback returned NaN or Inf */
+  SYM_NEWTON_FAIL = 3,     /* Newton iteration did not converge */
+  SYM_SINGULAR = 4,        /* singular Newton matrix */
+  /* < 0: fatal */
+  SYM_EBADINPUT = -1,      /* invalid argument to a core function */
+  SYM_ENOMEM = -2,         /* allocation failed */
+  SYM_ECALLBACK = -3,      /* a callback returned a fatal status */
+  SYM_ESTEPSIZE = -4,      /* step size fell below the round-off limit */
+  SYM_ENEWTON = -5,        /* Newton failed and the step cannot shrink */
+  SYM_ENONFINITE = -6,     /* non-finite values that a smaller step cannot cure */
+  SYM_EMAXSTEPS = -7,      /* more steps than allowed */
+  SYM_EOUTPUT = -8         /* the output sink reported an error */
+};
+
+/* Ways a run ends well (returned by sym_integrate) */
+enum {
+  SYM_DONE = 0,            /* reached tf */
+  SYM_STOP_OUTPUT = 100,   /* the output sink asked to stop */
+  SYM_STOP_EVENT = 101     /* a terminal event */
+};
+
+const char *sym_status_name (int status);
+
+/* ---------------------------------------------------------------- memory */
+typedef void *(*sym_alloc_fn) (size_t nbytes);
+typedef void (*sym_free_fn) (void *ptr);
+/* Set the allocator for all later allocations (default: malloc/free). */
+void sym_set_allocator (sym_alloc_fn alloc, sym_free_fn dealloc);
+void *sym_malloc (size_t nbytes);            /* NULL on failure */
+void *sym_calloc (size_t count, size_t size);/* zeroed; NULL on failure */
+void sym_free (void *ptr);                   /* NULL is fine */
+
+/* ---------------------------------------------------------------- system */
+/* f(t, y) -> dy, all of length n = 2d. */
+typedef int (*sym_rhs_fn) (double t, const double *y, double *dy, void *user);
+/* Batch form (Vectorized): k states as the columns of the n-by-k matrix y,
+   their times in t[0..k-1]; dy is n-by-k. */
+typedef int (*sym_rhs_batch_fn) (int k, const double *t, const double *y,
+                                 double *dy, void *user);
+/* Df = d f / d y at (t, y): n-by-n column-major. */
+typedef int (*sym_jac_fn) (double t, const double *y, double *df, void *user);
+
+typedef struct {
+  long nsteps;      /* accepted steps */
+  long nfailed;     /* rejected steps (error test or Newton failure) */
+  long nrhs;        /* calls of rhs (a batch call counts once) */
+  long nrhs_states; /* states evaluated (a batch call of k counts k) */
+  long nfd;         /* rhs calls spent on finite-difference Jacobians
+                       (included in nrhs) */
+  long njac;        /* calls of jac */
+  long nnewton;     /* Newton iterations */
+  long nnewton_fail;/* Newton solves that failed */
+  long nlu;         /* LU factorizations */
+  long nsolve;      /* linear solves with an LU */
+} sym_counters;
+
+typedef struct {
+  int dim;                    /* d: y has n = 2d components */
+  sym_rhs_fn rhs;             /* required */
+  sym_rhs_batch_fn rhs_batch; /* optional (NULL): several states in one call */
+  sym_jac_fn jac;             /* optional (NULL): finite differences of rhs */
+  void *user;                 /* passed to every callback */
+  sym_counters cnt;           /* kept by the core; zero it before a run */
+  double fail_t;              /* t of the last failed callback (for messages) */
+  int fail_status;            /* its status */
+} sym_system;
+
+/* Calls through the system with counting and checks.  sym_rhs returns the
+   callback's status, or SYM_NONFINITE when dy has a NaN or Inf (fail_t is
+   set).  sym_rhs_many evaluates k states (batch callback if present, else k
+   calls).  sym_jac uses sys->jac, or forward differences of rhs when it is
+   NULL (n extra rhs calls, counted in nfd), with f0 = f(t, y) if the caller
+   has it (else NULL: one more call). */
+int sym_rhs (sym_system *sys, double t, const double *y, double *dy);
+int sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
+                  double *dy);
+int sym_jac (sym_system *sys, double t, const double *y, const double *f0,
+             double *df);
+
+/* ---------------------------------------------------------------- LAPACK */
+/* Dense LU with reuse: factor once, solve many times. */
+typedef struct {
+  int n;
+  double *a;      /* n*n: the matrix, overwritten by its LU factors */
+  int *ipiv;
+  int factored;   /* 1 after a successful sym_lu_factor */
+} sym_lu;
+
+int sym_lu_init (sym_lu *lu, int n);          /* allocates; SYM_ENOMEM */
+void sym_lu_free (sym_lu *lu);
+int sym_lu_factor (sym_lu *lu, sym_counters *c); /* SYM_SINGULAR if singular */
+int sym_lu_solve (sym_lu *lu, double *b, sym_counters *c); /* b <- A \ b */
+
+/* ---------------------------------------------------------------- Newton */
+/* Simplified Newton in the manner of RADAU5: the iteration matrix is kept
+   (and its LU reused) while convergence is fast; the contraction rate theta
+   is estimated every iteration; the iteration stops when
+   theta/(1-theta)*|dx| <= tol (|.| the max norm of dx./scale), or when |dx|
+   itself is at round-off level.  A slow or diverging iteration with a stale
+   matrix asks for a fresh one (from x) and goes on; with a fresh one it
+   fails with SYM_NEWTON_FAIL. */
+typedef struct {
+  /* r = G(x) */
+  int (*residual) (void *ctx, const double *x, double *r);
+  /* A = G'(x) (or a good approximation), n-by-n column-major */
+  int (*matrix) (void *ctx, const double *x, double *a);
+  void *ctx;
+} sym_newton_problem;
+
+typedef struct {
+  int n;
+  sym_lu lu;
+  int have_matrix;  /* lu holds a factored matrix that may be reused */
+  int fresh;        /* that matrix was computed in this solve */
+  double tol;       /* stop tolerance on the scaled max norm (default 1e-14) */
+  int maxit;        /* iterations per solve (default 10) */
+  double eta;       /* theta/(1-theta) carried from the last solve */
+  double theta;     /* last contraction rate */
+  int iters;        /* iterations of the last solve */
+  double *r, *dx, *x0;   /* work */
+} sym_newton;
+
+int sym_newton_init (sym_newton *nw, int n);
+void sym_newton_free (sym_newton *nw);
+/* Forget the kept matrix (e.g. after a change of h). */
+void sym_newton_invalidate (sym_newton *nw);
+/* Solve G(x) = 0 from the start x (overwritten by the solution).  scale[i]
+   > 0 weights component i in the stopping norm. */
+int sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
+                      const double *scale, sym_counters *c);
+
+/* ---------------------------------------------------------------- steppers */
+typedef struct {
+  int q_dofs;          /* SPVI: Legendre modes for q (>= 2) */
+  int nodes;           /* SPVI: Gauss-Legendre nodes (>= 1) */
+  double newton_tol;   /* 0: default */
+  int max_newton;      /* 0: default */
+  int separable;       /* SE/SV: explicit steps for H = T(p) + V(q) */
+  int want_error;      /* the driver will ask for error estimates */
+  int want_dense;      /* the driver will call dense() */
+} sym_method_opts;
+
+/* A stepper type: a const table, its functions static in the method's file.
+   Life cycle: alloc; then for each attempt step (trial state), and accept
+   when the driver keeps the step (the trial becomes the current step: dense
+   output and the predictor of the next start use it); reset forgets the
+   history (after an event stop or a restart); free. */
+typedef struct {
+  const char *name;
+  int order;          /* order of the method with the options given */
+  /* order of the error estimate: err = O(h^(err_order+1)) */
+  int (*err_order) (const void *state);
+  int (*method_order) (const void *state);
+  void *(*alloc) (const sym_system *sys, const sym_method_opts *opts,
+                  int *status);
+  /* Step from (t, y) by h (h < 0 runs backwards) into ynext; if yerr is not
+     NULL, also an estimate of the local error (n components). */
+  int (*step) (void *state, sym_system *sys, double t, double h,
+               const double *y, double *ynext, double *yerr);
+  void (*accept) (void *state);
+  /* y(t) on the last accepted step, t within it: its own continuous output */
+  int (*dense) (void *state, sym_system *sys, double t, double *y);
+  void (*reset) (void *state);
+  void (*free) (void *state);
+} sym_stepper_type;
+
+extern const sym_stepper_type *const sym_step_se;
+extern const sym_stepper_type *const sym_step_sv;
+extern const sym_stepper_type *const sym_step_spvi;
+
+/* ---------------------------------------------------------------- driver */
+/* Events: value[k] for k < nevents; isterminal/direction as in Octave. */
+typedef int (*sym_event_fn) (double t, const double *y, double *value,
+                             int *isterminal, int *direction, void *user);
+/* Output sink: one row (t, y).  Return 0 to go on, 1 to stop the run,
+   < 0 on error. */
+typedef int (*sym_output_fn) (double t, const double *y, void *user);
+/* Event sink: an event located at (te, ye), index ie (0-based). */
+typedef int (*sym_eventout_fn) (double te, const double *ye, int ie,
+                                void *user);
+
+typedef struct {
+  double t0, tf;
+  /* output times (strictly monotonic, tout[0] = t0): when ntout > 2 rows go
+     out exactly at these times from the dense output; else at every step */
+  const double *tout;
+  int ntout;
+  int refine;          /* ntout <= 2: rows per step (1: step points only) */
+  /* fixed step: h_fixed > 0 (sign taken from tf - t0); nsteps_fixed > 0
+     takes exactly that many steps, else steps to tf with the last one
+     shortened to end on tf */
+  double h_fixed;
+  long nsteps_fixed;
+  /* adaptive */
+  double rtol;
+  const double *atol;  /* atol_len = 1 or n */
+  int atol_len;
+  int norm_control;
+  double h0;           /* 0: automatic */
+  double hmax;         /* 0 or inf: |tf - t0| / 10, as ode45 */
+  long max_steps;      /* 0: no limit */
+  /* events */
+  int nevents;
+  sym_event_fn events;
+  void *event_user;
+  sym_eventout_fn event_out;
+  /* output */
+  sym_output_fn output;
+  void *output_user;
+} sym_driver_opts;
+
+/* Integrate from y0.  Returns SYM_DONE, SYM_STOP_OUTPUT, SYM_STOP_EVENT or a
+   status < 0 (rows handed to the output sink so far stay valid).
+   *t_reached is the last time reached. */
+int sym_integrate (const sym_stepper_type *type, sym_system *sys,
+                   const sym_method_opts *mopts, const sym_driver_opts *dopts,
+                   const double *y0, double *t_reached);
+
+/* ---------------------------------------------------------------- quadrature */
+/* Gauss-Legendre nodes z[0..m-1] (ascending, in [-1, 1]) and weights w,
+   by Golub-Welsch (LAPACK dstev).  Returns 0 or a status < 0. */
+int sym_gauss_legendre (int m, double *z, double *w);
+/* Legendre polynomials l_0..l_{n-1} and their derivatives at x:
+   l[i] = l_i(x), dl[i] = l_i'(x). */
+void sym_legendre (int n, double x, double *l, double *dl);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

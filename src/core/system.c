@@ -1,0 +1,193 @@
+/* system.c -- allocator hook, status names, and counted calls through the
+   user's system (rhs, batch rhs, Jacobian or its finite differences). */
+#include "sym.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static sym_alloc_fn sym_alloc_hook = malloc;
+static sym_free_fn sym_free_hook = free;
+
+void
+sym_set_allocator (sym_alloc_fn alloc, sym_free_fn dealloc)
+{
+  sym_alloc_hook = alloc ? alloc : malloc;
+  sym_free_hook = dealloc ? dealloc : free;
+}
+
+void *
+sym_malloc (size_t nbytes)
+{
+  return sym_alloc_hook (nbytes ? nbytes : 1);
+}
+
+void *
+sym_calloc (size_t count, size_t size)
+{
+  if (size && count > (size_t) -1 / size)
+    return NULL;
+  void *p = sym_malloc (count * size);
+  if (p)
+    memset (p, 0, count * size);
+  return p;
+}
+
+void
+sym_free (void *ptr)
+{
+  if (ptr)
+    sym_free_hook (ptr);
+}
+
+const char *
+sym_status_name (int status)
+{
+  switch (status)
+    {
+    case SYM_SUCCESS: return "SYM_SUCCESS";
+    case SYM_RECOVERABLE: return "SYM_RECOVERABLE";
+    case SYM_NONFINITE: return "SYM_NONFINITE";
+    case SYM_NEWTON_FAIL: return "SYM_NEWTON_FAIL";
+    case SYM_SINGULAR: return "SYM_SINGULAR";
+    case SYM_EBADINPUT: return "SYM_EBADINPUT";
+    case SYM_ENOMEM: return "SYM_ENOMEM";
+    case SYM_ECALLBACK: return "SYM_ECALLBACK";
+    case SYM_ESTEPSIZE: return "SYM_ESTEPSIZE";
+    case SYM_ENEWTON: return "SYM_ENEWTON";
+    case SYM_ENONFINITE: return "SYM_ENONFINITE";
+    case SYM_EMAXSTEPS: return "SYM_EMAXSTEPS";
+    case SYM_EOUTPUT: return "SYM_EOUTPUT";
+    case SYM_STOP_OUTPUT: return "SYM_STOP_OUTPUT";
+    case SYM_STOP_EVENT: return "SYM_STOP_EVENT";
+    default: return status > 0 ? "SYM_RECOVERABLE" : "SYM_ECALLBACK";
+    }
+}
+
+static int
+all_finite (int n, const double *v)
+{
+  for (int i = 0; i < n; i++)
+    if (! isfinite (v[i]))
+      return 0;
+  return 1;
+}
+
+/* A callback's own status: 0 ok, > 0 recoverable, < 0 fatal (mapped to
+   SYM_ECALLBACK so the core's codes stay distinct from the user's). */
+static int
+callback_status (sym_system *sys, double t, int st)
+{
+  if (st == 0)
+    return SYM_SUCCESS;
+  sys->fail_t = t;
+  sys->fail_status = st;
+  return st > 0 ? SYM_RECOVERABLE : SYM_ECALLBACK;
+}
+
+int
+sym_rhs (sym_system *sys, double t, const double *y, double *dy)
+{
+  int n = 2 * sys->dim;
+  sys->cnt.nrhs++;
+  sys->cnt.nrhs_states++;
+  int st = callback_status (sys, t, sys->rhs (t, y, dy, sys->user));
+  if (st)
+    return st;
+  if (! all_finite (n, dy))
+    {
+      sys->fail_t = t;
+      sys->fail_status = SYM_NONFINITE;
+      return SYM_NONFINITE;
+    }
+  return SYM_SUCCESS;
+}
+
+int
+sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
+              double *dy)
+{
+  int n = 2 * sys->dim;
+  if (sys->rhs_batch && k > 1)
+    {
+      sys->cnt.nrhs++;
+      sys->cnt.nrhs_states += k;
+      int st = callback_status (sys, t[0],
+                                sys->rhs_batch (k, t, y, dy, sys->user));
+      if (st)
+        return st;
+      for (int j = 0; j < k; j++)
+        if (! all_finite (n, dy + (size_t) j * n))
+          {
+            sys->fail_t = t[j];
+            sys->fail_status = SYM_NONFINITE;
+            return SYM_NONFINITE;
+          }
+      return SYM_SUCCESS;
+    }
+  for (int j = 0; j < k; j++)
+    {
+      int st = sym_rhs (sys, t[j], y + (size_t) j * n, dy + (size_t) j * n);
+      if (st)
+        return st;
+    }
+  return SYM_SUCCESS;
+}
+
+/* Forward differences, one rhs call per column: the step balances
+   truncation (~ delta) against round-off (~ eps / delta). */
+static int
+jac_fd (sym_system *sys, double t, const double *y, const double *f0,
+        double *df)
+{
+  int n = 2 * sys->dim;
+  double *w = sym_malloc ((size_t) 3 * n * sizeof (double));
+  if (! w)
+    return SYM_ENOMEM;
+  double *yp = w, *fp = w + n, *fb = w + 2 * n;
+  int st = SYM_SUCCESS;
+  long before = sys->cnt.nrhs;
+  if (! f0)
+    {
+      st = sym_rhs (sys, t, y, fb);
+      f0 = fb;
+    }
+  memcpy (yp, y, (size_t) n * sizeof (double));
+  const double sq = sqrt (DBL_EPSILON);
+  for (int j = 0; j < n && ! st; j++)
+    {
+      double del = sq * fmax (1.0, fabs (y[j]));
+      volatile double yj = y[j] + del;   /* exact representable step */
+      del = yj - y[j];
+      yp[j] = yj;
+      st = sym_rhs (sys, t, yp, fp);
+      yp[j] = y[j];
+      if (! st)
+        for (int i = 0; i < n; i++)
+          df[i + (size_t) j * n] = (fp[i] - f0[i]) / del;
+    }
+  sys->cnt.nfd += sys->cnt.nrhs - before;
+  sym_free (w);
+  return st;
+}
+
+int
+sym_jac (sym_system *sys, double t, const double *y, const double *f0,
+         double *df)
+{
+  if (! sys->jac)
+    return jac_fd (sys, t, y, f0, df);
+  int n = 2 * sys->dim;
+  sys->cnt.njac++;
+  int st = callback_status (sys, t, sys->jac (t, y, df, sys->user));
+  if (st)
+    return st;
+  if (! all_finite (n * n, df))
+    {
+      sys->fail_t = t;
+      sys->fail_status = SYM_NONFINITE;
+      return SYM_NONFINITE;
+    }
+  return SYM_SUCCESS;
+}

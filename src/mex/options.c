@@ -1,0 +1,272 @@
+/* options.c -- odeset options and the package's own fields, matched by
+   name without regard to case, checked, with the defaults of SPEC.md. */
+#include "symmex.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <string.h>
+
+static const char *BADARG = "Octave:invalid-input-arg";
+
+static int
+name_eq (const char *a, const char *b)
+{
+  for (; *a && *b; a++, b++)
+    if (tolower ((unsigned char) *a) != tolower ((unsigned char) *b))
+      return 0;
+  return *a == *b;
+}
+
+/* The first non-empty field whose name matches (any case). */
+static const mxArray *
+field (const mxArray *s, const char *name)
+{
+  if (! s)
+    return NULL;
+  int nf = mxGetNumberOfFields (s);
+  for (int i = 0; i < nf; i++)
+    if (name_eq (mxGetFieldNameByNumber (s, i), name))
+      {
+        const mxArray *v = mxGetFieldByNumber (s, 0, i);
+        if (v && ! mxIsEmpty (v))
+          return v;
+      }
+  return NULL;
+}
+
+static int
+is_real_numeric (const mxArray *v)
+{
+  return (mxIsDouble (v) || mxIsSingle (v) || mxIsInt8 (v) || mxIsInt16 (v)
+          || mxIsInt32 (v) || mxIsInt64 (v) || mxIsUint8 (v)
+          || mxIsUint16 (v) || mxIsUint32 (v) || mxIsUint64 (v))
+         && ! mxIsComplex (v) && ! mxIsSparse (v);
+}
+
+/* Element i of a real numeric array as double. */
+static double
+elem (const mxArray *v, size_t i)
+{
+  if (mxIsDouble (v))
+    return mxGetPr (v)[i];
+  mxArray *in[1] = { (mxArray *) v }, *out[1] = { NULL };
+  mexCallMATLAB (1, out, 1, in, "double");
+  double x = mxGetPr (out[0])[i];
+  mxDestroyArray (out[0]);
+  return x;
+}
+
+static double
+pos_scalar (const char *solver, const mxArray *v, const char *name,
+            int allow_inf)
+{
+  if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive real scalar",
+                       solver, name);
+  double x = elem (v, 0);
+  if (! (x > 0) || (! allow_inf && ! isfinite (x)))
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive %sscalar, got %g",
+                       solver, name, allow_inf ? "" : "finite ", x);
+  return x;
+}
+
+static long
+pos_integer (const char *solver, const mxArray *v, const char *name,
+             long lo, long hi)
+{
+  if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer scalar",
+                       solver, name);
+  double x = elem (v, 0);
+  if (! isfinite (x) || x != floor (x))
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer, got %g",
+                       solver, name, x);
+  if (x < lo || x > hi)
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be between %ld and %ld, got %g",
+                       solver, name, lo, hi, x);
+  return (long) x;
+}
+
+/* "on"/"off" strings, or a logical/numeric scalar. */
+static int
+on_off (const char *solver, const mxArray *v, const char *name)
+{
+  if (mxIsChar (v))
+    {
+      char buf[8];
+      if (mxGetString (v, buf, sizeof buf) == 0)
+        {
+          if (name_eq (buf, "on"))
+            return 1;
+          if (name_eq (buf, "off"))
+            return 0;
+        }
+    }
+  else if ((mxIsLogical (v) || is_real_numeric (v))
+           && mxGetNumberOfElements (v) == 1)
+    return mxIsLogical (v) ? mxGetLogicals (v)[0] != 0 : elem (v, 0) != 0;
+  mexErrMsgIdAndTxt (BADARG, "%s: %s must be \"on\" or \"off\"", solver, name);
+  return 0;
+}
+
+int
+symmex_is_function (const mxArray *a)
+{
+  if (mxIsFunctionHandle (a))
+    return 1;
+  if (mxIsChar (a) && mxGetM (a) == 1 && mxGetN (a) > 0)
+    {
+      mxArray *in[1] = { (mxArray *) a }, *out[1] = { NULL };
+      mexCallMATLAB (1, out, 1, in, "exist");
+      double e = mxGetScalar (out[0]);
+      mxDestroyArray (out[0]);
+      return e == 2 || e == 3 || e == 5 || e == 103;
+    }
+  return 0;
+}
+
+static const mxArray *
+function_opt (const char *solver, const mxArray *opts, const char *name)
+{
+  const mxArray *v = field (opts, name);
+  if (v && ! symmex_is_function (v))
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a function handle or the "
+                       "name of a function", solver, name);
+  return v;
+}
+
+void
+symmex_parse_options (const char *solver, const mxArray *opts, int n,
+                      int is_spvi, symmex_opts *o)
+{
+  const mxArray *v;
+  memset (o, 0, sizeof (*o));
+  if (opts && ! mxIsEmpty (opts)
+      && ! (mxIsStruct (opts) && mxGetNumberOfElements (opts) == 1))
+    mexErrMsgIdAndTxt (BADARG, "%s: OPTS must be a struct from odeset or "
+                       "symplecticset (or a plain 1x1 struct)", solver);
+  if (opts && mxIsEmpty (opts))
+    opts = NULL;
+
+  o->rtol = (v = field (opts, "RelTol")) ? pos_scalar (solver, v, "RelTol", 0)
+            : 1e-3;
+  o->atol = mxMalloc (sizeof (double) * n);
+  o->atol_len = 1;
+  o->atol[0] = 1e-6;
+  if ((v = field (opts, "AbsTol")))
+    {
+      size_t k = mxGetNumberOfElements (v);
+      if (! is_real_numeric (v) || (k != 1 && k != (size_t) n))
+        mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a positive scalar or "
+                           "a vector of %d elements (numel (Y0))", solver, n);
+      for (size_t i = 0; i < k; i++)
+        {
+          o->atol[i] = elem (v, i);
+          if (! (o->atol[i] > 0) || ! isfinite (o->atol[i]))
+            mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be positive and "
+                               "finite, got %g", solver, o->atol[i]);
+        }
+      o->atol_len = (int) k;
+    }
+  o->norm_control = (v = field (opts, "NormControl"))
+                    ? on_off (solver, v, "NormControl") : 0;
+  if (o->norm_control && o->atol_len > 1)
+    mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a scalar when "
+                       "NormControl is \"on\"", solver);
+  o->h0 = (v = field (opts, "InitialStep"))
+          ? pos_scalar (solver, v, "InitialStep", 0) : 0;
+  o->hmax = (v = field (opts, "MaxStep"))
+            ? pos_scalar (solver, v, "MaxStep", 1) : 0;
+  o->events = function_opt (solver, opts, "Events");
+  o->outputfcn = function_opt (solver, opts, "OutputFcn");
+  if ((v = field (opts, "OutputSel")))
+    {
+      size_t k = mxGetNumberOfElements (v);
+      if (! is_real_numeric (v) && ! mxIsLogical (v))
+        mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must be a vector of "
+                           "indices into Y0", solver);
+      o->outputsel = mxMalloc (sizeof (int) * (k + 1));
+      if (mxIsLogical (v))
+        {
+          if (k != (size_t) n)
+            mexErrMsgIdAndTxt (BADARG, "%s: a logical OutputSel must have "
+                               "%d elements", solver, n);
+          for (size_t i = 0; i < k; i++)
+            if (mxGetLogicals (v)[i])
+              o->outputsel[o->noutputsel++] = (int) i;
+        }
+      else
+        for (size_t i = 0; i < k; i++)
+          {
+            double x = elem (v, i);
+            if (x != floor (x) || x < 1 || x > n)
+              mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must hold indices "
+                                 "between 1 and %d, got %g", solver, n, x);
+            o->outputsel[o->noutputsel++] = (int) x - 1;
+          }
+    }
+  o->refine = (v = field (opts, "Refine"))
+              ? (int) pos_integer (solver, v, "Refine", 1, 1000000) : 1;
+  o->stats = (v = field (opts, "Stats")) ? on_off (solver, v, "Stats") : 0;
+  o->vectorized = (v = field (opts, "Vectorized"))
+                  ? on_off (solver, v, "Vectorized") : 0;
+  if ((v = field (opts, "Jacobian")))
+    {
+      if (symmex_is_function (v))
+        o->jacobian = v;
+      else if (is_real_numeric (v) && mxGetM (v) == (size_t) n
+               && mxGetN (v) == (size_t) n && mxIsDouble (v))
+        o->jacobian = v;
+      else
+        mexErrMsgIdAndTxt (BADARG, "%s: Jacobian must be a %dx%d real "
+                           "matrix (df/dy) or a function handle", solver, n,
+                           n);
+    }
+  o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");
+  o->h_fixed = (v = field (opts, "TimeStepSize"))
+               ? pos_scalar (solver, v, "TimeStepSize", 0) : 0;
+  o->nsteps_fixed = (v = field (opts, "TimeStepNumber"))
+                    ? pos_integer (solver, v, "TimeStepNumber", 1,
+                                   1000000000000L) : 0;
+  o->separable = (v = field (opts, "Separable"))
+                 ? on_off (solver, v, "Separable") : 0;
+  o->newton_tol = (v = field (opts, "NewtonTol"))
+                  ? pos_scalar (solver, v, "NewtonTol", 0) : 0;
+  o->max_newton = (v = field (opts, "MaxNewtonIterations"))
+                  ? (int) pos_integer (solver, v, "MaxNewtonIterations", 1,
+                                       1000) : 0;
+  o->max_steps = (v = field (opts, "MaxSteps"))
+                 ? pos_integer (solver, v, "MaxSteps", 1, 1000000000000L) : 0;
+
+  /* odeSPVI: Q_DoFs (modes of q) and Nodes (alias P_DoFs); odepkg's
+     PolynomialDegree sets Q_DoFs = degree + 1 (and Nodes unless given). */
+  o->nodes = 3;
+  o->q_dofs = 0;
+  if (is_spvi)
+    {
+      const mxArray *vn = field (opts, "Nodes");
+      const mxArray *vp = field (opts, "P_DoFs");
+      const mxArray *vq = field (opts, "Q_DoFs");
+      const mxArray *vd = field (opts, "PolynomialDegree");
+      if (vn)
+        o->nodes = (int) pos_integer (solver, vn, "Nodes", 1, 40);
+      else if (vp)
+        o->nodes = (int) pos_integer (solver, vp, "P_DoFs", 1, 40);
+      if (vq)
+        o->q_dofs = (int) pos_integer (solver, vq, "Q_DoFs", 2, 41);
+      else if (vd)
+        {
+          o->q_dofs = 1 + (int) pos_integer (solver, vd, "PolynomialDegree",
+                                             1, 40);
+          if (! vn && ! vp)
+            o->nodes = o->q_dofs;
+        }
+      else
+        o->q_dofs = o->nodes + 1;
+      if (o->q_dofs > 2 * o->nodes)
+        mexErrMsgIdAndTxt (BADARG, "%s: Q_DoFs = %d with Nodes = %d is a "
+                           "degenerate pair: the scheme does not converge "
+                           "unless Q_DoFs <= 2*Nodes", solver, o->q_dofs,
+                           o->nodes);
+    }
+}

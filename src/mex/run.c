@@ -1,0 +1,785 @@
+/* run.c -- one call of a solver: arguments, the user's functions as C
+   callbacks of the core, the output sink, warnings, Stats and outputs.
+
+   Every allocation is mxMalloc'd (the core's allocator hook points there)
+   so that an error raised inside a user's function, which leaves this MEX
+   function through mexCallMATLAB without coming back, leaks nothing:
+   Octave frees it all when the call ends. */
+#include "symmex.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static const char *BADARG = "Octave:invalid-input-arg";
+#define MAXBATCH 64
+
+typedef struct {
+  const char *solver;
+  int d, n;
+  /* feval arguments: {fcn, t, y, extras...}; t and y are reused */
+  mxArray **args;
+  int nargs;
+  mxArray *batch_t[MAXBATCH + 1], *batch_y[MAXBATCH + 1];
+  /* Jacobian */
+  int jac_source;
+  mxArray **jargs;           /* {handle, t, y, extras...} for Jacobian/Hess */
+  const double *jac_const;
+  /* events */
+  mxArray **eargs;
+  int nevents;
+  /* output */
+  const symmex_opts *o;
+  mxArray **oargs;           /* {OutputFcn, t, y, flag, extras...} */
+  int nextra;
+  const mxArray **extra;
+  double *tbuf, *ybuf;
+  size_t nrows, cap;
+  double *te, *ye;
+  int *ie;
+  size_t nev, evcap;
+  int output_stopped;
+} ctx_t;
+
+/* ------------------------------------------------------------ helpers */
+
+static mxArray *
+col (int n)
+{
+  return mxCreateDoubleMatrix (n, 1, mxREAL);
+}
+
+static const char *
+shape (const mxArray *a, char *buf, size_t len)
+{
+  snprintf (buf, len, "%dx%d %s", (int) mxGetM (a), (int) mxGetN (a),
+            mxGetClassName (a));
+  return buf;
+}
+
+/* Check a value returned by a user's function: real numeric with k
+   elements; convert it to double if needed.  Returns a double array. */
+static const double *
+checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
+                const char *expect, double t)
+{
+  mxArray *a = *pa;
+  char buf[64];
+  if (! a || ! (mxIsNumeric (a) || mxIsLogical (a)) || mxIsComplex (a)
+      || mxIsSparse (a) || mxGetNumberOfElements (a) != k)
+    {
+      if (a && mxIsComplex (a) && mxGetNumberOfElements (a) == k)
+        mexErrMsgIdAndTxt (BADARG, "%s: %s returned a complex value at "
+                           "t = %.17g; expected %s", c->solver, what, t,
+                           expect);
+      mexErrMsgIdAndTxt (BADARG, "%s: %s must return %s, got %s at "
+                         "t = %.17g", c->solver, what, expect,
+                         a ? shape (a, buf, sizeof buf) : "nothing", t);
+    }
+  if (! mxIsDouble (a))
+    {
+      mxArray *out[1] = { NULL };
+      mexCallMATLAB (1, out, 1, pa, "double");
+      mxDestroyArray (a);
+      *pa = out[0];
+    }
+  return mxGetPr (*pa);
+}
+
+/* ------------------------------------------------------------ callbacks */
+
+static int
+cb_rhs (double t, const double *y, double *dy, void *user)
+{
+  ctx_t *c = user;
+  mxArray *out[1] = { NULL };
+  mxGetPr (c->args[1])[0] = t;
+  memcpy (mxGetPr (c->args[2]), y, sizeof (double) * c->n);
+  mexCallMATLAB (1, out, c->nargs, c->args, "feval");
+  char expect[64];
+  snprintf (expect, sizeof expect, "a vector of %d real elements", c->n);
+  const double *v = checked_values (c, out, c->n, "FCN", expect, t);
+  memcpy (dy, v, sizeof (double) * c->n);
+  mxDestroyArray (out[0]);
+  return 0;
+}
+
+/* Vectorized: fcn (t_row, Y) with Y n-by-k returns n-by-k. */
+static int
+cb_rhs_batch (int k, const double *t, const double *y, double *dy,
+              void *user)
+{
+  ctx_t *c = user;
+  if (k > MAXBATCH)
+    {
+      for (int j = 0; j < k; j++)
+        cb_rhs (t[j], y + (size_t) j * c->n, dy + (size_t) j * c->n, c);
+      return 0;
+    }
+  if (! c->batch_t[k])
+    {
+      c->batch_t[k] = mxCreateDoubleMatrix (1, k, mxREAL);
+      c->batch_y[k] = mxCreateDoubleMatrix (c->n, k, mxREAL);
+    }
+  mxArray *t1 = c->args[1], *y1 = c->args[2];
+  c->args[1] = c->batch_t[k];
+  c->args[2] = c->batch_y[k];
+  memcpy (mxGetPr (c->args[1]), t, sizeof (double) * k);
+  memcpy (mxGetPr (c->args[2]), y, sizeof (double) * c->n * k);
+  mxArray *out[1] = { NULL };
+  mexCallMATLAB (1, out, c->nargs, c->args, "feval");
+  c->args[1] = t1;
+  c->args[2] = y1;
+  char expect[96];
+  snprintf (expect, sizeof expect, "a %dx%d real matrix (Vectorized)", c->n,
+            k);
+  const double *v = checked_values (c, out, (size_t) c->n * k, "FCN",
+                                    expect, t[0]);
+  memcpy (dy, v, sizeof (double) * c->n * k);
+  mxDestroyArray (out[0]);
+  return 0;
+}
+
+/* Hess(H) (n-by-n, or its column-major vector) -> Df = J * Hess. */
+static void
+hess_to_df (int d, const double *hs, double *df)
+{
+  int n = 2 * d;
+  for (int j = 0; j < n; j++)
+    for (int i = 0; i < d; i++)
+      {
+        df[i + (size_t) j * n] = hs[(i + d) + (size_t) j * n];
+        df[(i + d) + (size_t) j * n] = -hs[i + (size_t) j * n];
+      }
+}
+
+static int
+cb_jac (double t, const double *y, double *df, void *user)
+{
+  ctx_t *c = user;
+  int n = c->n;
+  char expect[96];
+  if (c->jac_source == JAC_MATRIX)
+    {
+      memcpy (df, c->jac_const, sizeof (double) * n * n);
+      return 0;
+    }
+  mxGetPr (c->jargs[1])[0] = t;
+  memcpy (mxGetPr (c->jargs[2]), y, sizeof (double) * n);
+  mxArray *out[2] = { NULL, NULL };
+  if (c->jac_source == JAC_FCN2)
+    {
+      mexCallMATLAB (2, out, c->nargs, c->jargs, "feval");
+      mxDestroyArray (out[0]);
+      out[0] = out[1];
+    }
+  else
+    mexCallMATLAB (1, out, c->nargs, c->jargs, "feval");
+  if (c->jac_source == JAC_FCN)
+    {
+      snprintf (expect, sizeof expect, "a %dx%d real matrix (df/dy)", n, n);
+      if (out[0] && (mxGetM (out[0]) != (size_t) n
+                     || mxGetN (out[0]) != (size_t) n))
+        checked_values (c, out, (size_t) -1, "the Jacobian function",
+                        expect, t);
+      const double *v = checked_values (c, out, (size_t) n * n,
+                                        "the Jacobian function", expect, t);
+      memcpy (df, v, sizeof (double) * n * n);
+    }
+  else
+    {
+      snprintf (expect, sizeof expect, "the Hessian of H, a %dx%d matrix or "
+                "a vector of %d elements", n, n, n * n);
+      const double *v
+        = checked_values (c, out, (size_t) n * n,
+                          c->jac_source == JAC_FCN2 ? "FCN (second output)"
+                                                    : "HamiltonianHessFcn",
+                          expect, t);
+      hess_to_df (c->d, v, df);
+    }
+  mxDestroyArray (out[0]);
+  return 0;
+}
+
+static int
+cb_events (double t, const double *y, double *value, int *isterminal,
+           int *direction, void *user)
+{
+  ctx_t *c = user;
+  mxGetPr (c->eargs[1])[0] = t;
+  memcpy (mxGetPr (c->eargs[2]), y, sizeof (double) * c->n);
+  mxArray *out[3] = { NULL, NULL, NULL };
+  mexCallMATLAB (3, out, c->nargs, c->eargs, "feval");
+  char expect[96];
+  snprintf (expect, sizeof expect, "%d real values", c->nevents);
+  const double *v = checked_values (c, &out[0], c->nevents,
+                                    "the Events function", expect, t);
+  memcpy (value, v, sizeof (double) * c->nevents);
+  for (int k = 1; k < 3; k++)
+    {
+      size_t ne = mxGetNumberOfElements (out[k]);
+      if (ne != 1 && ne != (size_t) c->nevents)
+        checked_values (c, &out[k], c->nevents, "the Events function",
+                        "ISTERMINAL and DIRECTION of the size of VALUE", t);
+      const double *w = checked_values (c, &out[k], ne, "the Events function",
+                                        "ISTERMINAL and DIRECTION of the "
+                                        "size of VALUE", t);
+      for (int i = 0; i < c->nevents; i++)
+        {
+          double x = w[ne == 1 ? 0 : i];
+          if (k == 1)
+            isterminal[i] = x != 0;
+          else
+            direction[i] = x > 0 ? 1 : (x < 0 ? -1 : 0);
+        }
+    }
+  for (int k = 0; k < 3; k++)
+    mxDestroyArray (out[k]);
+  return 0;
+}
+
+/* OutputFcn (t, y(OutputSel), flag, extras...): returns its stop flag. */
+static int
+call_outputfcn (ctx_t *c, const double *t, int nt, const double *y,
+                const char *flag)
+{
+  const symmex_opts *o = c->o;
+  int nsel = o->outputsel ? o->noutputsel : c->n;
+  mxArray *ta, *ya;
+  if (! t)
+    {
+      ta = mxCreateDoubleMatrix (0, 0, mxREAL);
+      ya = mxCreateDoubleMatrix (0, 0, mxREAL);
+    }
+  else
+    {
+      ta = mxCreateDoubleMatrix (nt, 1, mxREAL);
+      memcpy (mxGetPr (ta), t, sizeof (double) * nt);
+      ya = mxCreateDoubleMatrix (nsel, 1, mxREAL);
+      for (int i = 0; i < nsel; i++)
+        mxGetPr (ya)[i] = y[o->outputsel ? o->outputsel[i] : i];
+    }
+  c->oargs[1] = ta;
+  c->oargs[2] = ya;
+  c->oargs[3] = mxCreateString (flag);
+  int nout = strcmp (flag, "") == 0 ? 1 : 0;
+  mxArray *out[1] = { NULL };
+  mexCallMATLAB (nout, out, c->nargs + 1, c->oargs, "feval");
+  int stop = 0;
+  if (nout && out[0] && ! mxIsEmpty (out[0]))
+    {
+      if (mxIsLogical (out[0]))
+        stop = mxGetLogicals (out[0])[0] != 0;
+      else if (mxIsNumeric (out[0]))
+        stop = mxGetScalar (out[0]) != 0;
+    }
+  if (out[0])
+    mxDestroyArray (out[0]);
+  mxDestroyArray (c->oargs[3]);
+  mxDestroyArray (ya);
+  mxDestroyArray (ta);
+  return stop;
+}
+
+static int
+sink_row (double t, const double *y, void *user)
+{
+  ctx_t *c = user;
+  if (c->nrows == c->cap)
+    {
+      c->cap = c->cap ? 2 * c->cap : 256;
+      c->tbuf = mxRealloc (c->tbuf, sizeof (double) * c->cap);
+      c->ybuf = mxRealloc (c->ybuf, sizeof (double) * c->cap * c->n);
+    }
+  c->tbuf[c->nrows] = t;
+  memcpy (c->ybuf + c->nrows * c->n, y, sizeof (double) * c->n);
+  c->nrows++;
+  if (c->o->outputfcn && c->nrows > 1)
+    {
+      if (call_outputfcn (c, &t, 1, y, ""))
+        {
+          c->output_stopped = 1;
+          return 1;
+        }
+    }
+  return 0;
+}
+
+static int
+sink_event (double te, const double *ye, int ie, void *user)
+{
+  ctx_t *c = user;
+  if (c->nev == c->evcap)
+    {
+      c->evcap = c->evcap ? 2 * c->evcap : 16;
+      c->te = mxRealloc (c->te, sizeof (double) * c->evcap);
+      c->ye = mxRealloc (c->ye, sizeof (double) * c->evcap * c->n);
+      c->ie = mxRealloc (c->ie, sizeof (int) * c->evcap);
+    }
+  c->te[c->nev] = te;
+  memcpy (c->ye + c->nev * c->n, ye, sizeof (double) * c->n);
+  c->ie[c->nev] = ie;
+  c->nev++;
+  return 0;
+}
+
+/* ------------------------------------------------------------ arguments */
+
+static mxArray *
+to_double (const mxArray *a)
+{
+  mxArray *in[1] = { (mxArray *) a }, *out[1] = { NULL };
+  mexCallMATLAB (1, out, 1, in, "double");
+  return out[0];
+}
+
+static int
+is_plain_numeric (const mxArray *a)
+{
+  return mxIsNumeric (a) && ! mxIsSparse (a) && ! mxIsComplex (a);
+}
+
+/* ------------------------------------------------------------ outputs */
+
+static mxArray *
+rows_matrix (const double *buf, size_t nrows, int n)
+{
+  /* buf holds the rows as columns of an n-by-nrows array */
+  mxArray *a = mxCreateDoubleMatrix (nrows, n, mxREAL);
+  double *p = mxGetPr (a);
+  for (size_t r = 0; r < nrows; r++)
+    for (int i = 0; i < n; i++)
+      p[r + (size_t) i * nrows] = buf[r * n + i];
+  return a;
+}
+
+static mxArray *
+column_of (const double *v, size_t k)
+{
+  mxArray *a = mxCreateDoubleMatrix (k, 1, mxREAL);
+  if (k)
+    memcpy (mxGetPr (a), v, sizeof (double) * k);
+  return a;
+}
+
+static const char *
+jac_source_name (int s)
+{
+  switch (s)
+    {
+    case JAC_MATRIX: return "Jacobian (constant matrix)";
+    case JAC_FCN: return "Jacobian (function)";
+    case JAC_HESSFCN: return "HamiltonianHessFcn";
+    case JAC_FCN2: return "second output of FCN (Hessian)";
+    case JAC_FD: return "finite differences of FCN";
+    default: return "none (explicit steps)";
+    }
+}
+
+static mxArray *
+stats_struct (const sym_counters *k, int jac_source)
+{
+  const char *names[] = { "nsteps", "nfailed", "nfevals", "npds",
+                          "ndecomps", "nlinsols", "nnewton", "nfdevals",
+                          "nstates", "jacobian_source" };
+  mxArray *s = mxCreateStructMatrix (1, 1, 10, names);
+  double vals[] = { k->nsteps, k->nfailed, k->nrhs, k->njac, k->nlu,
+                    k->nsolve, k->nnewton, k->nfd, k->nrhs_states };
+  for (int i = 0; i < 9; i++)
+    mxSetFieldByNumber (s, 0, i, mxCreateDoubleScalar (vals[i]));
+  mxSetFieldByNumber (s, 0, 9, mxCreateString (jac_source_name (jac_source)));
+  return s;
+}
+
+/* ------------------------------------------------------------ the run */
+
+void
+symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
+            int nrhs, const mxArray *prhs[])
+{
+  const char *name = solver->name;
+  char buf[64];
+  sym_set_allocator (mxMalloc, mxFree);
+
+  if (nrhs < 3)
+    mexErrMsgIdAndTxt ("Octave:invalid-fun-call",
+                       "%s: expected %s (FCN, TSPAN, Y0) or %s (FCN, TSPAN, "
+                       "Y0, OPTS, P1, ...), got %d arguments", name, name,
+                       name, nrhs);
+  if (nlhs > 5)
+    mexErrMsgIdAndTxt ("Octave:invalid-fun-call",
+                       "%s: at most 5 outputs [T, Y, TE, YE, IE]", name);
+
+  /* FCN */
+  const mxArray *fcn = prhs[0];
+  if (! symmex_is_function (fcn))
+    mexErrMsgIdAndTxt (BADARG, "%s: FCN must be a function handle or the "
+                       "name of a function, got %s", name,
+                       shape (fcn, buf, sizeof buf));
+
+  /* TSPAN */
+  const mxArray *ts = prhs[1];
+  if (! is_plain_numeric (ts) || mxGetNumberOfElements (ts) < 2
+      || (mxGetM (ts) != 1 && mxGetN (ts) != 1))
+    mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be a real vector [T0, TF] or "
+                       "[T0, T1, ..., TF] of at least 2 elements", name);
+  mxArray *tsd = mxIsDouble (ts) ? NULL : to_double (ts);
+  const double *tspan = mxGetPr (tsd ? tsd : ts);
+  int ntspan = (int) mxGetNumberOfElements (ts);
+  for (int i = 0; i < ntspan; i++)
+    if (! isfinite (tspan[i]))
+      mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be finite, element %d is "
+                         "%g", name, i + 1, tspan[i]);
+  double dir = tspan[1] > tspan[0] ? 1 : -1;
+  for (int i = 1; i < ntspan; i++)
+    if (! (dir * (tspan[i] - tspan[i - 1]) > 0))
+      mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be strictly monotonic "
+                         "(elements %d and %d are %g and %g)", name, i,
+                         i + 1, tspan[i - 1], tspan[i]);
+
+  /* Y0 */
+  const mxArray *y0a = prhs[2];
+  if (! is_plain_numeric (y0a) || mxIsEmpty (y0a)
+      || (mxGetM (y0a) != 1 && mxGetN (y0a) != 1))
+    {
+      if (mxIsComplex (y0a))
+        mexErrMsgIdAndTxt (BADARG, "%s: Y0 must be real, got a complex "
+                           "value", name);
+      mexErrMsgIdAndTxt (BADARG, "%s: Y0 must be a non-empty real numeric "
+                         "vector [q0; p0], got %s", name,
+                         shape (y0a, buf, sizeof buf));
+    }
+  int n = (int) mxGetNumberOfElements (y0a);
+  if (n % 2)
+    mexErrMsgIdAndTxt (BADARG, "%s: Y0 must have an even number of elements "
+                       "[q; p], got %d", name, n);
+  mxArray *y0d = mxIsDouble (y0a) ? NULL : to_double (y0a);
+  const double *y0 = mxGetPr (y0d ? y0d : y0a);
+  for (int i = 0; i < n; i++)
+    if (! isfinite (y0[i]))
+      mexErrMsgIdAndTxt (BADARG, "%s: Y0 must be finite, element %d is %g",
+                         name, i + 1, y0[i]);
+
+  /* OPTS */
+  symmex_opts o;
+  symmex_parse_options (name, nrhs > 3 ? prhs[3] : NULL, n, solver->is_spvi,
+                        &o);
+
+  /* the context and the reused argument arrays of feval */
+  ctx_t *c = mxCalloc (1, sizeof (ctx_t));
+  c->solver = name;
+  c->n = n;
+  c->d = n / 2;
+  c->o = &o;
+  c->nextra = nrhs > 4 ? nrhs - 4 : 0;
+  c->extra = prhs + 4;
+  c->nargs = 3 + c->nextra;
+  c->args = mxCalloc (c->nargs, sizeof (mxArray *));
+  c->args[0] = (mxArray *) fcn;
+  c->args[1] = mxCreateDoubleScalar (tspan[0]);
+  c->args[2] = col (n);
+  for (int i = 0; i < c->nextra; i++)
+    c->args[3 + i] = (mxArray *) c->extra[i];
+  memcpy (mxGetPr (c->args[2]), y0, sizeof (double) * n);
+
+  /* Probe FCN at (t0, y0): its size and values, and whether it gives the
+     Hessian as a second output (only when Newton will need a matrix). */
+  int need_jac = ! (o.separable && ! solver->is_spvi);
+  int probe_hess = need_jac && ! o.jacobian && ! o.hessfcn;
+  mxArray *out[2] = { NULL, NULL };
+  int have2 = 0;
+  if (probe_hess)
+    {
+      mxArray *ex = mexCallMATLABWithTrap (2, out, c->nargs, c->args,
+                                           "feval");
+      if (ex)
+        {
+          mxDestroyArray (ex);
+          out[0] = out[1] = NULL;
+        }
+      else if (out[1] && ! mxIsEmpty (out[1]))
+        have2 = 1;
+    }
+  if (! out[0])
+    mexCallMATLAB (1, out, c->nargs, c->args, "feval");
+  char expect[64];
+  snprintf (expect, sizeof expect, "a vector of %d real elements", n);
+  const double *f0 = checked_values (c, &out[0], n, "FCN", expect, tspan[0]);
+  for (int i = 0; i < n; i++)
+    if (! isfinite (f0[i]))
+      mexErrMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned %g "
+                         "(element %d) at t = %.17g, the initial point",
+                         name, f0[i], i + 1, tspan[0]);
+  if (have2)
+    {
+      snprintf (expect, sizeof expect, "the Hessian of H: %dx%d or %d "
+                "elements", n, n, n * n);
+      checked_values (c, &out[1], (size_t) n * n, "FCN (second output)",
+                      expect, tspan[0]);
+    }
+
+  /* the Jacobian source, in SPEC's order */
+  c->jac_source = JAC_NONE;
+  if (need_jac)
+    {
+      if (o.jacobian && ! symmex_is_function (o.jacobian))
+        {
+          c->jac_source = JAC_MATRIX;
+          c->jac_const = mxGetPr (o.jacobian);
+        }
+      else if (o.jacobian)
+        c->jac_source = JAC_FCN;
+      else if (o.hessfcn)
+        c->jac_source = JAC_HESSFCN;
+      else if (have2)
+        c->jac_source = JAC_FCN2;
+      else
+        c->jac_source = JAC_FD;
+      if (c->jac_source != JAC_MATRIX && c->jac_source != JAC_FD)
+        {
+          c->jargs = mxCalloc (c->nargs, sizeof (mxArray *));
+          memcpy (c->jargs, c->args, sizeof (mxArray *) * c->nargs);
+          c->jargs[0] = (mxArray *) (c->jac_source == JAC_FCN ? o.jacobian
+                                     : c->jac_source == JAC_HESSFCN
+                                     ? o.hessfcn : fcn);
+          c->jargs[1] = mxCreateDoubleScalar (0);
+          c->jargs[2] = col (n);
+        }
+    }
+
+  /* Events: one call at t0 tells how many there are */
+  if (o.events)
+    {
+      c->eargs = mxCalloc (c->nargs, sizeof (mxArray *));
+      memcpy (c->eargs, c->args, sizeof (mxArray *) * c->nargs);
+      c->eargs[0] = (mxArray *) o.events;
+      c->eargs[1] = mxCreateDoubleScalar (tspan[0]);
+      c->eargs[2] = col (n);
+      memcpy (mxGetPr (c->eargs[2]), y0, sizeof (double) * n);
+      mxArray *eo[3] = { NULL, NULL, NULL };
+      mexCallMATLAB (3, eo, c->nargs, c->eargs, "feval");
+      if (! eo[0] || ! (mxIsNumeric (eo[0]) || mxIsLogical (eo[0]))
+          || mxIsEmpty (eo[0]) || mxIsComplex (eo[0]))
+        mexErrMsgIdAndTxt (BADARG, "%s: the Events function must return "
+                           "[VALUE, ISTERMINAL, DIRECTION] with a non-empty "
+                           "real VALUE", name);
+      c->nevents = (int) mxGetNumberOfElements (eo[0]);
+      for (int k = 0; k < 3; k++)
+        mxDestroyArray (eo[k]);
+    }
+
+  /* sol output: step points only, as ode45 does */
+  int want_sol = nlhs == 1;
+  int ntout = want_sol ? 2 : ntspan;
+  double tf = tspan[ntspan - 1];
+
+  if (o.nsteps_fixed > 0 && o.h_fixed > 0 && ntout > 2)
+    {
+      double tend = tspan[0] + dir * o.h_fixed * o.nsteps_fixed;
+      if (dir * (tf - tend) > 1e-12 * fabs (tf))
+        mexWarnMsgIdAndTxt ("symplectic:tspan-beyond-end", "%s: "
+                            "TimeStepNumber*TimeStepSize ends at t = %g; "
+                            "no output for TSPAN beyond that", name, tend);
+    }
+
+  /* OutputFcn: nargout = 0 and no OutputFcn plots with odeplot, as ode45 */
+  mxArray *odeplot = NULL;
+  if (nlhs == 0 && ! o.outputfcn)
+    {
+      odeplot = mxCreateString ("odeplot");
+      o.outputfcn = odeplot;
+    }
+  if (o.outputfcn)
+    {
+      c->oargs = mxCalloc (c->nargs + 1, sizeof (mxArray *));
+      c->oargs[0] = (mxArray *) o.outputfcn;
+      for (int i = 0; i < c->nextra; i++)
+        c->oargs[4 + i] = (mxArray *) c->extra[i];
+      call_outputfcn (c, tspan, ntspan, y0, "init");
+    }
+
+  /* the system and the run */
+  sym_system sys;
+  memset (&sys, 0, sizeof sys);
+  sys.dim = c->d;
+  sys.rhs = cb_rhs;
+  sys.rhs_batch = o.vectorized ? cb_rhs_batch : NULL;
+  sys.jac = (c->jac_source == JAC_FD || c->jac_source == JAC_NONE) ? NULL
+            : cb_jac;
+  sys.user = c;
+  sys.cnt.nrhs = 1 + have2 * 0;   /* the probe */
+  sys.cnt.nrhs_states = 1;
+
+  sym_method_opts mo;
+  memset (&mo, 0, sizeof mo);
+  mo.q_dofs = o.q_dofs;
+  mo.nodes = o.nodes;
+  mo.newton_tol = o.newton_tol;
+  mo.max_newton = o.max_newton;
+  mo.separable = o.separable;
+
+  sym_driver_opts dopt;
+  memset (&dopt, 0, sizeof dopt);
+  dopt.t0 = tspan[0];
+  dopt.tf = tf;
+  dopt.tout = tspan;
+  dopt.ntout = ntout;
+  dopt.refine = (ntout > 2 || want_sol) ? 1 : o.refine;
+  dopt.h_fixed = o.h_fixed;
+  dopt.nsteps_fixed = o.nsteps_fixed;
+  dopt.rtol = o.rtol;
+  dopt.atol = o.atol;
+  dopt.atol_len = o.atol_len;
+  dopt.norm_control = o.norm_control;
+  dopt.h0 = o.h0;
+  dopt.hmax = o.hmax;
+  dopt.max_steps = o.max_steps;
+  dopt.nevents = c->nevents;
+  dopt.events = o.events ? cb_events : NULL;
+  dopt.event_user = c;
+  dopt.event_out = sink_event;
+  dopt.output = sink_row;
+  dopt.output_user = c;
+
+  double treached = tspan[0];
+  int status = sym_integrate (solver->type, &sys, &mo, &dopt, y0, &treached);
+
+  if (o.outputfcn)
+    call_outputfcn (c, NULL, 0, NULL, "done");
+
+  /* a run that could not go on: warn, and return what was computed */
+  double tlast = c->nrows ? c->tbuf[c->nrows - 1] : tspan[0];
+  switch (status)
+    {
+    case SYM_DONE:
+    case SYM_STOP_EVENT:
+      break;
+    case SYM_STOP_OUTPUT:
+      mexWarnMsgIdAndTxt ("symplectic:output-stop", "%s: OutputFcn asked to "
+                          "stop at t = %.17g; returning the solution up to "
+                          "there", name, tlast);
+      break;
+    case SYM_ENEWTON:
+      mexWarnMsgIdAndTxt ("symplectic:newton-failed", "%s: Newton's method "
+                          "did not converge at t = %.17g %s; returning the "
+                          "solution up to t = %.17g", name, treached,
+                          (o.h_fixed > 0 || o.nsteps_fixed > 0)
+                          ? "with the fixed step (try a smaller "
+                            "TimeStepSize)"
+                          : "even with the smallest step", tlast);
+      break;
+    case SYM_ENONFINITE:
+      mexWarnMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned NaN or "
+                          "Inf near t = %.17g and a smaller step did not "
+                          "help; returning the solution up to t = %.17g",
+                          name, sys.fail_t, tlast);
+      break;
+    case SYM_ESTEPSIZE:
+      mexWarnMsgIdAndTxt ("symplectic:step-size", "%s: the step size became "
+                          "too small at t = %.17g; returning the solution up "
+                          "to there", name, tlast);
+      break;
+    case SYM_EMAXSTEPS:
+      mexWarnMsgIdAndTxt ("symplectic:max-steps", "%s: MaxSteps reached at "
+                          "t = %.17g; returning the solution up to there",
+                          name, tlast);
+      break;
+    case SYM_ENOMEM:
+      mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory", name);
+      break;
+    case SYM_ECALLBACK:
+      mexWarnMsgIdAndTxt ("symplectic:callback", "%s: a callback failed at "
+                          "t = %.17g; returning the solution up to there",
+                          name, sys.fail_t);
+      break;
+    default:
+      mexErrMsgIdAndTxt ("symplectic:internal", "%s: internal failure (%s)",
+                         name, sym_status_name (status));
+    }
+
+  if (o.stats)
+    {
+      mexPrintf ("Number of successful steps: %ld\n", sys.cnt.nsteps);
+      mexPrintf ("Number of failed attempts:  %ld\n", sys.cnt.nfailed);
+      mexPrintf ("Number of function calls:   %ld\n", sys.cnt.nrhs);
+      mexPrintf ("Number of Newton iterations: %ld\n", sys.cnt.nnewton);
+      mexPrintf ("Number of Jacobian/Hessian evaluations: %ld (source: %s; "
+                 "%ld function calls for finite differences)\n",
+                 sys.cnt.njac, jac_source_name (c->jac_source),
+                 sys.cnt.nfd);
+      mexPrintf ("Number of LU decompositions: %ld\n", sys.cnt.nlu);
+      mexPrintf ("Number of linear solves:     %ld\n", sys.cnt.nsolve);
+    }
+
+  /* outputs */
+  if (nlhs == 0)
+    return;
+  if (want_sol)
+    {
+      int has_ev = o.events != NULL;
+      const char *fields[12];
+      int nf = 0;
+      fields[nf++] = "x";
+      fields[nf++] = "y";
+      fields[nf++] = "solver";
+      if (has_ev)
+        {
+          fields[nf++] = "xe";
+          fields[nf++] = "ye";
+          fields[nf++] = "ie";
+        }
+      fields[nf++] = "stats";
+      if (solver->is_spvi)
+        {
+          fields[nf++] = "order";
+          fields[nf++] = "Q_DoFs";
+          fields[nf++] = "Nodes";
+        }
+      mxArray *s = mxCreateStructMatrix (1, 1, nf, fields);
+      mxArray *x = mxCreateDoubleMatrix (1, c->nrows, mxREAL);
+      if (c->nrows)
+        memcpy (mxGetPr (x), c->tbuf, sizeof (double) * c->nrows);
+      mxArray *y = mxCreateDoubleMatrix (n, c->nrows, mxREAL);
+      if (c->nrows)
+        memcpy (mxGetPr (y), c->ybuf, sizeof (double) * c->nrows * n);
+      mxSetField (s, 0, "x", x);
+      mxSetField (s, 0, "y", y);
+      mxSetField (s, 0, "solver", mxCreateString (name));
+      if (has_ev)
+        {
+          mxSetField (s, 0, "xe", column_of (c->te, c->nev));
+          mxSetField (s, 0, "ye", rows_matrix (c->ye, c->nev, n));
+          mxArray *ie = mxCreateDoubleMatrix (c->nev, 1, mxREAL);
+          for (size_t i = 0; i < c->nev; i++)
+            mxGetPr (ie)[i] = c->ie[i] + 1;
+          mxSetField (s, 0, "ie", ie);
+        }
+      mxSetField (s, 0, "stats", stats_struct (&sys.cnt, c->jac_source));
+      if (solver->is_spvi)
+        {
+          int nq = o.q_dofs, m = o.nodes;
+          int ord = 2 * (nq - 1 < 2 * m - nq + 1 ? nq - 1 : 2 * m - nq + 1);
+          mxSetField (s, 0, "order", mxCreateDoubleScalar (ord));
+          mxSetField (s, 0, "Q_DoFs", mxCreateDoubleScalar (nq));
+          mxSetField (s, 0, "Nodes", mxCreateDoubleScalar (m));
+        }
+      plhs[0] = s;
+      return;
+    }
+  plhs[0] = column_of (c->tbuf, c->nrows);
+  if (nlhs > 1)
+    plhs[1] = rows_matrix (c->ybuf, c->nrows, n);
+  if (nlhs > 2)
+    {
+      plhs[2] = column_of (c->te, c->nev);
+      if (nlhs > 3)
+        plhs[3] = rows_matrix (c->ye, c->nev, n);
+      if (nlhs > 4)
+        {
+          mxArray *ie = mxCreateDoubleMatrix (c->nev, 1, mxREAL);
+          for (size_t i = 0; i < c->nev; i++)
+            mxGetPr (ie)[i] = c->ie[i] + 1;
+          plhs[4] = ie;
+        }
+    }
+}

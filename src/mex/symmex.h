@@ -1,0 +1,56 @@
+/* symmex.h -- the Octave side of the package: the only code that includes
+   mex.h.  It validates arguments and options, turns the user's function
+   handles into C callbacks of the core, and builds the outputs. */
+#ifndef SYMMEX_H
+#define SYMMEX_H
+
+#include "mex.h"
+#include "../core/sym.h"
+
+/* Which solver is running: its name (for messages) and stepper table. */
+typedef struct {
+  const char *name;
+  const sym_stepper_type *type;
+  int is_spvi;
+} symmex_solver;
+
+/* The whole call of a solver: odeXX (fcn, tspan, y0, opts, p1, ...). */
+void symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
+                 int nrhs, const mxArray *prhs[]);
+
+/* ------------------------------------------------------------ options */
+enum { JAC_NONE = 0, JAC_FD, JAC_MATRIX, JAC_FCN, JAC_HESSFCN, JAC_FCN2 };
+
+typedef struct {
+  double rtol;
+  double *atol;
+  int atol_len;
+  int norm_control;
+  double h0, hmax;
+  const mxArray *events;      /* handle or NULL */
+  const mxArray *outputfcn;   /* handle/name or NULL */
+  int *outputsel;             /* 0-based indices, or NULL */
+  int noutputsel;
+  int refine;
+  int stats;
+  int vectorized;
+  const mxArray *jacobian;    /* matrix or handle, or NULL */
+  const mxArray *hessfcn;     /* handle or NULL */
+  double h_fixed;
+  long nsteps_fixed;
+  int q_dofs, nodes;
+  int separable;
+  double newton_tol;
+  int max_newton;
+  long max_steps;
+} symmex_opts;
+
+/* Parse opts (an odeset struct, a plain struct, or []) for a problem of
+   n = 2d components; errors name the solver. */
+void symmex_parse_options (const char *solver, const mxArray *opts, int n,
+                           int is_spvi, symmex_opts *o);
+
+/* Is a a function handle, or the name of a function? */
+int symmex_is_function (const mxArray *a);
+
+#endif

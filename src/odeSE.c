@@ -1,0 +1,11 @@
+/* odeSE.c -- MEX entry point of odeSE; all the work is in mex/ and core/. */
+#include "mex/symmex.h"
+
+void
+mexFunction (int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[])
+{
+  static const symmex_solver solver = { "odeSE", NULL, 0 };
+  symmex_solver s = solver;
+  s.type = sym_step_se;
+  symmex_run (&s, nlhs, plhs, nrhs, prhs);
+}
