@@ -141,9 +141,8 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
   /* Below this the corrections are round-off: accept. */
   const double floor_tol = 16.0 * DBL_EPSILON;
   int st;
-  int restarts = 0;
-  double eta = fmax (nw->eta, DBL_EPSILON);
-  eta = pow (eta, 0.8);   /* RADAU5: trust the old rate a little less */
+  int refreshes = 0;
+  double eta = pow (fmax (nw->eta, DBL_EPSILON), 0.8);
 
   nw->iters = 0;
   nw->fresh = 0;
@@ -158,9 +157,8 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
   for (;;)
     {
       double dxold = 0.0, theta = 0.0;
-      int k;
-      int ok = 0, slow = 0;
-      for (k = 0; k < nw->maxit; k++)
+      int diverged = 0;
+      for (int k = 0; k < nw->maxit; k++)
         {
           st = p->residual (p->ctx, x, nw->r);
           if (st)
@@ -170,17 +168,17 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
           st = sym_lu_solve (&nw->lu, nw->dx, c);
           if (st)
             return st;
+          double dxn = scaled_norm (n, nw->dx, scale);
+          if (! isfinite (dxn))
+            {
+              diverged = 1;
+              break;
+            }
           for (int i = 0; i < n; i++)
             x[i] += nw->dx[i];
           if (c)
             c->nnewton++;
           nw->iters++;
-          double dxn = scaled_norm (n, nw->dx, scale);
-          if (! isfinite (dxn))
-            {
-              slow = 1;
-              break;
-            }
           if (k > 0)
             {
               theta = dxn / fmax (dxold, DBL_MIN);
@@ -188,47 +186,43 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
                 {
                   if (dxn <= floor_tol)   /* stagnating at round-off */
                     {
-                      ok = 1;
-                      break;
+                      nw->theta = theta;
+                      nw->eta = 1.0;
+                      return SYM_SUCCESS;
                     }
-                  slow = 1;
+                  diverged = 1;
                   break;
                 }
               eta = theta / (1.0 - theta);
-              /* predicted failure: the remaining iterations cannot reach
-                 tol at this rate */
-              if (pow (theta, nw->maxit - 1 - k) / (1.0 - theta) * dxn
-                  > 1e3 * nw->tol && k >= 2)
-                {
-                  slow = 1;
-                  break;
-                }
             }
           if (eta * dxn <= nw->tol || dxn <= floor_tol)
             {
-              ok = 1;
-              break;
+              nw->theta = theta;
+              nw->eta = eta;
+              return SYM_SUCCESS;
             }
+          /* predicted failure: at this rate the iterations left cannot
+             reach tol */
+          if (k > 0
+              && pow (theta, nw->maxit - 1 - k) / (1.0 - theta) * dxn
+                 > nw->tol)
+            break;
           dxold = dxn;
         }
-      if (ok)
-        {
-          nw->theta = theta;
-          nw->eta = eta;
-          return SYM_SUCCESS;
-        }
-      (void) slow;
-      /* Slow or diverging: with a stale matrix, refresh it once and go on;
-         with a fresh one, give up (the caller shrinks the step). */
-      if (nw->fresh || restarts > 0)
+      /* Slow or diverging.  A stale matrix is refreshed at the start and
+         the solve restarts; a slow but converging iteration gets a fresh
+         matrix at the current iterate and goes on; a divergence with a
+         fresh matrix, or too many refreshes, fails (the caller shrinks h). */
+      if ((diverged && nw->fresh) || refreshes >= 2)
         {
           if (c)
             c->nnewton_fail++;
           nw->eta = 1.0;
           return SYM_NEWTON_FAIL;
         }
-      restarts++;
-      memcpy (x, nw->x0, (size_t) n * sizeof (double));
+      refreshes++;
+      if (diverged)
+        memcpy (x, nw->x0, (size_t) n * sizeof (double));
       st = new_matrix (nw, p, x, c);
       if (st)
         return st < 0 ? st : SYM_NEWTON_FAIL;

@@ -8,6 +8,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 static int tu_pass = 0, tu_fail = 0;
 
 #define CHECK(cond, ...)                                                  \

@@ -1,0 +1,70 @@
+## Copyright (C) 2026 The symplectic developers
+##
+## This program is free software: you can redistribute it and/or modify it
+## under the terms of the GNU General Public License as published by the Free
+## Software Foundation, either version 3 of the License, or (at your option)
+## any later version.  See the file COPYING.
+
+## -*- texinfo -*-
+## @deftypefn  {} {[@var{t}, @var{y}] =} odeSV (@var{fcn}, @var{tspan}, @var{y0})
+## @deftypefnx {} {[@var{t}, @var{y}] =} odeSV (@var{fcn}, @var{tspan}, @var{y0}, @var{opts})
+## @deftypefnx {} {[@var{t}, @var{y}] =} odeSV (@var{fcn}, @var{tspan}, @var{y0}, @var{opts}, @var{par1}, @dots{})
+## @deftypefnx {} {[@var{t}, @var{y}, @var{te}, @var{ye}, @var{ie}] =} odeSV (@dots{})
+## @deftypefnx {} {@var{sol} =} odeSV (@dots{})
+## @deftypefnx {} {} odeSV (@dots{})
+## Solve Hamilton's equations with the St@"ormer--Verlet method (order 2).
+##
+## @var{fcn} returns Hamilton's equations for y = [q; p], q, p in R^d:
+## @code{dy = fcn (t, y) = [dH/dp; -dH/dq + F(t, q, p)]}, F an optional
+## forcing term.  One step:
+##
+## @example
+## @group
+## p(k+1/2) = p(k) + h/2 * fp (t(k), q(k), p(k+1/2))                  (implicit)
+## q(k+1)   = q(k) + h/2 * (fq (t(k), q(k), p(k+1/2))
+##                         + fq (t(k+1), q(k+1), p(k+1/2)))          (implicit)
+## p(k+1)   = p(k+1/2) + h/2 * fp (t(k+1), q(k+1), p(k+1/2))          (explicit)
+## @end group
+## @end example
+##
+## @noindent
+## with fq = dH/dp and fp = -dH/dq + F.  The method is symplectic,
+## symmetric (time-reversible) and variational: with a fixed step its
+## energy error stays bounded (of size h^2) over very long runs, and the
+## momenta of the symmetries of H are conserved to round-off.  With
+## @code{Separable} @qcode{"on"} (H = T(p) + V(q)) it is the explicit
+## leapfrog: two evaluations of @var{fcn} per step.
+##
+## Arguments, outputs and options are those of @code{odeSE} (see
+## @code{help odeSE}): @code{TimeStepSize}/@code{TimeStepNumber} for fixed
+## steps, @code{RelTol}/@code{AbsTol} for adaptive ones, the four sources
+## of Newton's matrix (@code{Jacobian}, @code{HamiltonianHessFcn}, a second
+## output of @var{fcn}, finite differences), @code{Separable},
+## @code{Events}, @code{OutputFcn}, @code{OutputSel}, @code{Refine},
+## @code{Stats}, @code{NewtonTol}, @code{MaxNewtonIterations}.
+##
+## In adaptive mode the local error estimate is the difference to the
+## trapezoidal rule built from @var{fcn} at both ends of the step,
+## y(k+1) - y(k) - h/2 (f(k) + f(k+1)), of size O(h^3) like the method's
+## local error; it costs one evaluation of @var{fcn} per step.  Dense output
+## (for output times, @code{Refine} and events) is the cubic Hermite
+## interpolant through the step points.
+##
+## Example: Kepler's problem over 100 orbits with a fixed step; the energy
+## error stays bounded and the angular momentum is conserved.
+##
+## @example
+## @group
+## kepler = @@(t, y) [y(3:4); -y(1:2) / norm(y(1:2))^3];
+## e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+## opts = symplecticset ("TimeStepSize", 2*pi/1000, "Separable", "on");
+## [t, y] = odeSV (kepler, [0 200*pi], y0, opts);
+## L = y(:,1).*y(:,4) - y(:,2).*y(:,3);     # constant to round-off
+## @end group
+## @end example
+## @seealso{odeSE, odeSPVI, symplecticset, ode45, odeset}
+## @end deftypefn
+
+function varargout = odeSV (varargin)
+  error ("odeSV: the compiled function odeSV.mex is missing; build the package with 'make'");
+endfunction

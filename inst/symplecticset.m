@@ -1,0 +1,174 @@
+## Copyright (C) 2026 The symplectic developers
+##
+## This program is free software: you can redistribute it and/or modify it
+## under the terms of the GNU General Public License as published by the Free
+## Software Foundation, either version 3 of the License, or (at your option)
+## any later version.  See the file COPYING.
+
+## -*- texinfo -*-
+## @deftypefn  {} {@var{opts} =} symplecticset ()
+## @deftypefnx {} {@var{opts} =} symplecticset (@var{name}, @var{value}, @dots{})
+## @deftypefnx {} {@var{opts} =} symplecticset (@var{oldopts}, @var{name}, @var{value}, @dots{})
+## @deftypefnx {} {@var{opts} =} symplecticset (@var{oldopts}, @var{newopts})
+## Create or modify an options structure for @code{odeSE}, @code{odeSV} and
+## @code{odeSPVI}.
+##
+## @code{symplecticset} works as @code{odeset} and accepts all of its
+## fields, plus the fields of this package, without the warning that
+## @code{odeset} gives for names it does not know.  Names are matched
+## without regard to case; the fields of the result have the canonical
+## spelling below.  The package's fields are:
+##
+## @table @code
+## @item TimeStepSize
+## Constant step size h > 0: no error control, the mode in which the
+## long-time behaviour of energy and momenta is guaranteed.  The last step
+## is shortened to end exactly on the final time.
+## @item TimeStepNumber
+## With @code{TimeStepSize}: take exactly this many steps from t0 (the end
+## of @var{tspan} then only gives the direction).  Alone: that many equal
+## steps over @var{tspan}.
+## @item Q_DoFs
+## @code{odeSPVI}: number of Legendre modes of q on each step (polynomial
+## degree Q_DoFs-1), at least 2 and at most 2*Nodes.  Default Nodes+1.
+## @item Nodes
+## @code{odeSPVI}: number of Gauss--Legendre quadrature nodes (1 to 40).
+## Default 3.  @code{P_DoFs} is accepted as an alias.
+## @item PolynomialDegree
+## @code{odeSPVI}: sets Q_DoFs = degree+1, and Nodes = degree+1 unless
+## Nodes is given.
+## @item HamiltonianHessFcn
+## Handle @code{hess (t, y, @dots{})} returning the Hessian of H with
+## respect to y = [q; p], as a 2d-by-2d matrix or its column-major vector.
+## @item Separable
+## @qcode{"on"} when H = T(p) + V(q) (and no forcing depends on p):
+## @code{odeSE} and @code{odeSV} then take explicit steps.  Default
+## @qcode{"off"}.
+## @item NewtonTol
+## Stopping tolerance of Newton's method, relative to the size of y.
+## Default 1e-14.
+## @item MaxNewtonIterations
+## Newton iterations per solve before the matrix is refreshed or the step
+## is retried.  Default 10.
+## @item MaxSteps
+## Largest number of steps of a run.  Default: no limit.
+## @end table
+##
+## Setting a field by assignment, @code{opts.Q_DoFs = 4}, works as well;
+## scripts written for the 2013 odepkg solvers, which passed these names to
+## @code{odeset}, keep working (with @code{odeset}'s warning).
+##
+## @example
+## @group
+## opts = symplecticset ("TimeStepSize", 0.01, "Nodes", 4, "RelTol", 1e-8);
+## [t, y] = odeSPVI (@@(t, y) [y(2); -sin(y(1))], [0 10], [1; 0], opts);
+## @end group
+## @end example
+## @seealso{odeset, odeget, odeSPVI, odeSE, odeSV}
+## @end deftypefn
+
+function opts = symplecticset (varargin)
+
+  persistent fields = {"TimeStepSize", "TimeStepNumber", "Q_DoFs", ...
+                       "Nodes", "P_DoFs", "PolynomialDegree", ...
+                       "HamiltonianHessFcn", "Separable", "NewtonTol", ...
+                       "MaxNewtonIterations", "MaxSteps"};
+
+  if (nargin == 0 && nargout == 0)
+    odeset ();
+    printf ("\nOptions of the symplectic package:\n");
+    printf ("       TimeStepSize:  scalar, >0, [] (adaptive)\n");
+    printf ("     TimeStepNumber:  integer, >0, []\n");
+    printf ("             Q_DoFs:  integer, 2..2*Nodes, [Nodes+1]\n");
+    printf ("              Nodes:  integer, 1..40, [3] (alias P_DoFs)\n");
+    printf ("   PolynomialDegree:  integer, >0, []\n");
+    printf (" HamiltonianHessFcn:  function handle, []\n");
+    printf ("          Separable:  {[\"off\"], \"on\"}\n");
+    printf ("          NewtonTol:  scalar, >0, [1e-14]\n");
+    printf ("MaxNewtonIterations:  integer, >0, [10]\n");
+    printf ("           MaxSteps:  integer, >0, [] (no limit)\n");
+    return;
+  endif
+
+  ## Split every argument into odeset's part and ours.
+  ours = struct ();
+  rest = {};
+  i = 1;
+  while (i <= nargin)
+    a = varargin{i};
+    if (isstruct (a))
+      if (! isscalar (a))
+        error ("Octave:invalid-input-arg",
+               "symplecticset: option structs must be 1x1");
+      endif
+      names = fieldnames (a);
+      keep = struct ();
+      for k = 1:numel (names)
+        j = find (strcmpi (names{k}, fields), 1);
+        if (isempty (j))
+          keep.(names{k}) = a.(names{k});
+        elseif (! isempty (a.(names{k})) || ! isfield (ours, fields{j}))
+          ours.(fields{j}) = a.(names{k});
+        endif
+      endfor
+      rest{end+1} = keep;
+      i += 1;
+    elseif (ischar (a) && isrow (a))
+      if (i == nargin)
+        error ("Octave:invalid-input-arg",
+               "symplecticset: option \"%s\" has no value", a);
+      endif
+      j = find (strcmpi (a, fields), 1);
+      if (isempty (j))
+        rest(end+1:end+2) = {a, varargin{i+1}};
+      else
+        ours.(fields{j}) = varargin{i+1};
+      endif
+      i += 2;
+    else
+      error ("Octave:invalid-input-arg",
+             "symplecticset: expected option names (strings) or structs, argument %d is a %s",
+             i, class (a));
+    endif
+  endwhile
+
+  ## odeset merges structs with each other only before name/value pairs.
+  structs = cellfun (@isstruct, rest);
+  opts = odeset (rest{structs}, rest{! structs});
+  for k = 1:numel (fields)
+    if (isfield (ours, fields{k}))
+      opts.(fields{k}) = ours.(fields{k});
+    elseif (! isfield (opts, fields{k}))
+      opts.(fields{k}) = [];
+    endif
+  endfor
+
+endfunction
+
+%!test
+%! opts = symplecticset ("TimeStepSize", 0.1, "q_dofs", 4, "RelTol", 1e-5);
+%! assert (opts.TimeStepSize, 0.1);
+%! assert (opts.Q_DoFs, 4);
+%! assert (opts.RelTol, 1e-5);
+%! assert (isempty (opts.Nodes));
+%! assert (isfield (opts, "AbsTol"));
+
+%!test
+%! ## no warning for the package's names
+%! lastwarn ("");
+%! opts = symplecticset ("Nodes", 3, "Separable", "on");
+%! assert (lastwarn (), "");
+%! assert (opts.Separable, "on");
+
+%!test
+%! ## merging with an old struct keeps its values
+%! old = symplecticset ("Nodes", 5, "RelTol", 1e-4);
+%! new = symplecticset (old, "TimeStepSize", 0.5);
+%! assert (new.Nodes, 5);
+%! assert (new.RelTol, 1e-4);
+%! assert (new.TimeStepSize, 0.5);
+%! new2 = symplecticset (old, struct ("nodes", 2));
+%! assert (new2.Nodes, 2);
+
+%!error <option "Nodes" has no value> symplecticset ("Nodes")
+%!error <expected option names> symplecticset (3)

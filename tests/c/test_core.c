@@ -1,0 +1,192 @@
+/* test_core.c -- the shared parts of the core: allocator hook, counted
+   callbacks with NaN/status checks, finite-difference Jacobians, LU, and
+   the simplified Newton iteration (convergence, reuse, failure). */
+#include "sym.h"
+#include "testutil.h"
+
+#include <string.h>
+
+static long nalloc = 0;
+static void *
+count_alloc (size_t n)
+{
+  nalloc++;
+  return malloc (n);
+}
+static void
+count_free (void *p)
+{
+  nalloc--;
+  free (p);
+}
+
+/* H = p^2/2 (1 + q^2) + q^2/2, d = 1 */
+static int bad_mode = 0;
+static int
+nonsep (double t, const double *y, double *dy, void *u)
+{
+  (void) t; (void) u;
+  double q = y[0], p = y[1];
+  dy[0] = p * (1 + q * q);
+  dy[1] = -(p * p * q + q);
+  if (bad_mode == 1)
+    dy[1] = NAN;
+  return bad_mode == 2 ? 1 : (bad_mode == 3 ? -7 : 0);
+}
+
+static int
+nonsep_jac (double t, const double *y, double *df, void *u)
+{
+  (void) t; (void) u;
+  double q = y[0], p = y[1];
+  df[0] = 2 * p * q;          /* d fq / dq */
+  df[1] = -(p * p + 1);       /* d fp / dq */
+  df[2] = 1 + q * q;          /* d fq / dp */
+  df[3] = -2 * p * q;         /* d fp / dp */
+  return 0;
+}
+
+/* Newton test problem: x^3 - a = 0 componentwise, plus a coupling */
+typedef struct { double a[3]; int nres, nmat; } cube;
+static int
+cube_res (void *ctx, const double *x, double *r)
+{
+  cube *c = ctx;
+  c->nres++;
+  for (int i = 0; i < 3; i++)
+    r[i] = x[i] * x[i] * x[i] + 0.1 * x[(i + 1) % 3] - c->a[i];
+  return 0;
+}
+static int
+cube_mat (void *ctx, const double *x, double *a)
+{
+  cube *c = ctx;
+  c->nmat++;
+  memset (a, 0, 9 * sizeof (double));
+  for (int i = 0; i < 3; i++)
+    {
+      a[i + 3 * i] = 3 * x[i] * x[i];
+      a[i + 3 * ((i + 1) % 3)] += 0.1;
+    }
+  return 0;
+}
+static int
+cube_bad_res (void *ctx, const double *x, double *r)
+{
+  (void) ctx;
+  for (int i = 0; i < 3; i++)
+    r[i] = x[i] * x[i] + 1.0;   /* no real root: Newton cannot converge */
+  return 0;
+}
+
+int
+main (void)
+{
+  sym_set_allocator (count_alloc, count_free);
+
+  /* status names */
+  CHECK (strcmp (sym_status_name (SYM_ENEWTON), "SYM_ENEWTON") == 0, "name");
+  CHECK (strcmp (sym_status_name (SYM_STOP_EVENT), "SYM_STOP_EVENT") == 0,
+         "name");
+
+  /* counted callbacks, NaN and status mapping */
+  sym_system sys;
+  memset (&sys, 0, sizeof sys);
+  sys.dim = 1;
+  sys.rhs = nonsep;
+  double y[2] = { 0.3, -0.7 }, dy[2], df[4], dfa[4];
+  CHECK (sym_rhs (&sys, 0, y, dy) == 0 && sys.cnt.nrhs == 1, "rhs");
+  bad_mode = 1;
+  CHECK (sym_rhs (&sys, 2.5, y, dy) == SYM_NONFINITE && sys.fail_t == 2.5,
+         "NaN detected");
+  bad_mode = 2;
+  CHECK (sym_rhs (&sys, 0, y, dy) == SYM_RECOVERABLE, "recoverable");
+  bad_mode = 3;
+  CHECK (sym_rhs (&sys, 0, y, dy) == SYM_ECALLBACK && sys.fail_status == -7,
+         "fatal");
+  bad_mode = 0;
+
+  /* batch without a batch callback: k single calls */
+  double yy[6] = { 0.1, 0.2, 0.3, 0.4, 0.5, 0.6 }, tt[3] = { 0, 1, 2 };
+  double dd[6];
+  long before = sys.cnt.nrhs;
+  CHECK (sym_rhs_many (&sys, 3, tt, yy, dd) == 0
+         && sys.cnt.nrhs == before + 3, "rhs_many");
+  nonsep (0, yy + 2, dy, NULL);
+  CHECK (dd[2] == dy[0] && dd[3] == dy[1], "rhs_many values");
+
+  /* finite-difference Jacobian vs analytic */
+  nonsep_jac (0, y, dfa, NULL);
+  sys.cnt.nrhs = 0;
+  CHECK (sym_jac (&sys, 0, y, NULL, df) == 0, "fd jac");
+  CHECK (sys.cnt.nfd == 3 && sys.cnt.nrhs == 3, "fd calls %ld", sys.cnt.nfd);
+  double e = 0;
+  for (int i = 0; i < 4; i++)
+    e = fmax (e, fabs (df[i] - dfa[i]));
+  CHECK (e < 1e-7, "fd jacobian error %.3g", e);
+  sys.jac = nonsep_jac;
+  CHECK (sym_jac (&sys, 0, y, NULL, df) == 0 && sys.cnt.njac == 1
+         && df[2] == dfa[2], "analytic jac");
+
+  /* LU: solve a 3x3 system; singular matrix reported */
+  sym_lu lu;
+  CHECK (sym_lu_init (&lu, 3) == 0, "lu init");
+  double A[9] = { 4, 1, 0, 1, 3, 1, 0, 1, 2 }, b[3] = { 1, 2, 3 };
+  memcpy (lu.a, A, sizeof A);
+  CHECK (sym_lu_factor (&lu, NULL) == 0, "factor");
+  CHECK (sym_lu_solve (&lu, b, NULL) == 0, "solve");
+  for (int i = 0; i < 3; i++)
+    {
+      double r = -(i + 1);
+      for (int j = 0; j < 3; j++)
+        r += A[i + 3 * j] * b[j];
+      CHECK (fabs (r) < 1e-14, "residual %.3g", r);
+    }
+  memset (lu.a, 0, 9 * sizeof (double));
+  CHECK (sym_lu_factor (&lu, NULL) == SYM_SINGULAR, "singular");
+  CHECK (sym_lu_solve (&lu, b, NULL) == SYM_EBADINPUT, "no solve unfactored");
+  sym_lu_free (&lu);
+
+  /* Newton: converges to machine precision; the LU is reused by the next
+     solve from a nearby start */
+  sym_newton nw;
+  CHECK (sym_newton_init (&nw, 3) == 0, "newton init");
+  cube c = { { 1, 8, 27 }, 0, 0 };
+  sym_newton_problem p = { cube_res, cube_mat, &c };
+  double x[3] = { 1.1, 2.1, 2.9 }, sc[3] = { 1, 1, 1 };
+  sym_counters cnt;
+  memset (&cnt, 0, sizeof cnt);
+  CHECK (sym_newton_solve (&nw, &p, x, sc, &cnt) == 0, "newton converges");
+  double r[3];
+  cube_res (&c, x, r);
+  CHECK (fabs (r[0]) + fabs (r[1]) + fabs (r[2]) < 1e-13,
+         "residual %.3g", fabs (r[0]) + fabs (r[1]) + fabs (r[2]));
+  CHECK (c.nmat <= 2 && cnt.nlu == c.nmat, "matrices %d", c.nmat);
+  int nmat1 = c.nmat;
+  long it1 = cnt.nnewton;
+  c.a[0] = 1.001;
+  CHECK (sym_newton_solve (&nw, &p, x, sc, &cnt) == 0, "second solve");
+  CHECK (c.nmat == nmat1, "matrix reused (%d)", c.nmat);
+  CHECK (cnt.nnewton - it1 <= 6, "iterations %ld (theta %.2g)", cnt.nnewton - it1, nw.theta);
+  cube_res (&c, x, r);
+  CHECK (fabs (r[0]) < 1e-13, "converged again");
+  /* a far start with the stale matrix: refreshed, still converges */
+  c.a[0] = 1.5;
+  c.a[1] = 6;
+  CHECK (sym_newton_solve (&nw, &p, x, sc, &cnt) == 0, "refresh converges");
+  cube_res (&c, x, r);
+  CHECK (fabs (r[0]) + fabs (r[1]) < 1e-12, "residual after refresh");
+  CHECK (c.nmat > nmat1, "matrix refreshed");
+  /* no solution: fails cleanly */
+  sym_newton_problem bad = { cube_bad_res, cube_mat, &c };
+  sym_newton_invalidate (&nw);
+  double xb[3] = { 1, 1, 1 };
+  int st = sym_newton_solve (&nw, &bad, xb, sc, &cnt);
+  CHECK (st == SYM_NEWTON_FAIL, "failure reported: %s", sym_status_name (st));
+  CHECK (cnt.nnewton_fail >= 1, "failure counted");
+  sym_newton_free (&nw);
+
+  CHECK (nalloc == 0, "every allocation freed through the hook (%ld left)",
+         nalloc);
+  return tu_finish ("test_core");
+}

@@ -1,0 +1,512 @@
+/* test_driver.c -- the driver loop on its own: fixed and adaptive steps,
+   output times, refine, events, stops, failures.  Two test steppers live
+   here so that the driver is tested independently of the real methods:
+   - "exact": the exact flow of the harmonic oscillator q' = p, p' = -q
+     (rotation), with the exact flow as dense output: events and output
+     times must then be found to round-off;
+   - "midpoint": the explicit midpoint rule (order 2) with the Euler
+     step as embedded estimate (err = O(h^2)), cubic Hermite dense output. */
+#include "sym.h"
+#include "testutil.h"
+
+#include <float.h>
+#include <string.h>
+
+/* ------------------------------------------------------------ systems */
+typedef struct {
+  double nan_after;   /* rhs returns NaN for t > nan_after */
+  long fatal_at;      /* rhs returns -1 on this call number (0: never) */
+  long calls;
+} ho_user;
+
+static int
+ho_rhs (double t, const double *y, double *dy, void *u)
+{
+  ho_user *hu = u;
+  hu->calls++;
+  if (hu->fatal_at && hu->calls == hu->fatal_at)
+    return -1;
+  dy[0] = y[1];
+  dy[1] = -y[0];
+  if (t > hu->nan_after)
+    dy[0] = NAN;
+  return 0;
+}
+
+/* ------------------------------------------------------------ exact stepper */
+typedef struct {
+  double t, h, y[2];      /* current accepted step start */
+  double tt, th, ty[2];   /* trial */
+} exact_state;
+
+static void *
+ex_alloc (const sym_system *s, const sym_method_opts *o, int *st)
+{
+  (void) s; (void) o;
+  exact_state *e = sym_calloc (1, sizeof *e);
+  *st = e ? 0 : SYM_ENOMEM;
+  return e;
+}
+
+static int
+ex_step (void *st, sym_system *sys, double t, double h, const double *y,
+         double *yn, double *yerr)
+{
+  exact_state *e = st;
+  double dy[2];
+  int s = sym_rhs (sys, t + h, y, dy);   /* to count calls and see NaNs */
+  if (s)
+    return s;
+  yn[0] = cos (h) * y[0] + sin (h) * y[1];
+  yn[1] = -sin (h) * y[0] + cos (h) * y[1];
+  if (yerr)
+    yerr[0] = yerr[1] = 1e-3 * h * h * h;   /* a smooth pretend error */
+  e->tt = t;
+  e->th = h;
+  e->ty[0] = y[0];
+  e->ty[1] = y[1];
+  return 0;
+}
+
+static void
+ex_accept (void *st)
+{
+  exact_state *e = st;
+  e->t = e->tt;
+  e->h = e->th;
+  memcpy (e->y, e->ty, sizeof e->y);
+}
+
+static int
+ex_dense (void *st, sym_system *sys, double t, double *y)
+{
+  (void) sys;
+  exact_state *e = st;
+  double s = t - e->t;
+  y[0] = cos (s) * e->y[0] + sin (s) * e->y[1];
+  y[1] = -sin (s) * e->y[0] + cos (s) * e->y[1];
+  return 0;
+}
+
+static void ex_reset (void *st) { (void) st; }
+static void ex_free (void *st) { sym_free (st); }
+static int ex_err_order (const void *st) { (void) st; return 2; }
+static int ex_order (const void *st) { (void) st; return 99; }
+
+static const sym_stepper_type exact_type = {
+  "exact", 99, ex_err_order, ex_order, ex_alloc, ex_step, ex_accept,
+  ex_dense, ex_reset, ex_free
+};
+
+/* ------------------------------------------------------------ midpoint */
+typedef struct {
+  double t, h, y0[2], y1[2], f0[2], f1[2];
+  double tt, th, ty0[2], ty1[2], tf0[2], tf1[2];
+} mid_state;
+
+static int
+mid_step (void *st, sym_system *sys, double t, double h, const double *y,
+          double *yn, double *yerr)
+{
+  mid_state *m = st;
+  double f0[2], ym[2], fm[2], f1[2];
+  int s = sym_rhs (sys, t, y, f0);
+  if (s)
+    return s;
+  for (int i = 0; i < 2; i++)
+    ym[i] = y[i] + 0.5 * h * f0[i];
+  if ((s = sym_rhs (sys, t + 0.5 * h, ym, fm)))
+    return s;
+  for (int i = 0; i < 2; i++)
+    yn[i] = y[i] + h * fm[i];
+  if ((s = sym_rhs (sys, t + h, yn, f1)))
+    return s;
+  if (yerr)
+    for (int i = 0; i < 2; i++)
+      yerr[i] = h * (fm[i] - f0[i]);
+  m->tt = t;
+  m->th = h;
+  memcpy (m->ty0, y, sizeof m->ty0);
+  memcpy (m->ty1, yn, sizeof m->ty1);
+  memcpy (m->tf0, f0, sizeof m->tf0);
+  memcpy (m->tf1, f1, sizeof m->tf1);
+  return 0;
+}
+
+static void
+mid_accept (void *st)
+{
+  mid_state *m = st;
+  m->t = m->tt;
+  m->h = m->th;
+  memcpy (m->y0, m->ty0, sizeof m->y0);
+  memcpy (m->y1, m->ty1, sizeof m->y1);
+  memcpy (m->f0, m->tf0, sizeof m->f0);
+  memcpy (m->f1, m->tf1, sizeof m->f1);
+}
+
+static int
+mid_dense (void *st, sym_system *sys, double t, double *y)
+{
+  (void) sys;
+  mid_state *m = st;
+  double s = (t - m->t) / m->h, h = m->h;
+  double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+  double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+  for (int i = 0; i < 2; i++)
+    y[i] = h00 * m->y0[i] + h10 * h * m->f0[i] + h01 * m->y1[i]
+           + h11 * h * m->f1[i];
+  return 0;
+}
+
+static void *
+mid_alloc (const sym_system *s, const sym_method_opts *o, int *st)
+{
+  (void) s; (void) o;
+  mid_state *m = sym_calloc (1, sizeof *m);
+  *st = m ? 0 : SYM_ENOMEM;
+  return m;
+}
+
+static int mid_err_order (const void *st) { (void) st; return 1; }
+static int mid_order (const void *st) { (void) st; return 2; }
+
+static const sym_stepper_type mid_type = {
+  "midpoint", 2, mid_err_order, mid_order, mid_alloc, mid_step, mid_accept,
+  mid_dense, ex_reset, ex_free
+};
+
+/* ------------------------------------------------------------ sinks */
+#define MAXROWS 200000
+typedef struct sink_s {
+  int nrows;
+  double t[MAXROWS], y[MAXROWS][2];
+  int stop_after;      /* ask to stop after this many rows (0: never) */
+  int nev;
+  double te[1000];
+  int ie[1000];
+  double ye[1000][2];
+} sink;
+static sink S;
+
+static int
+out_row (double t, const double *y, void *u)
+{
+  sink *s = u;
+  if (s->nrows < MAXROWS)
+    {
+      s->t[s->nrows] = t;
+      s->y[s->nrows][0] = y[0];
+      s->y[s->nrows][1] = y[1];
+    }
+  s->nrows++;
+  return s->stop_after && s->nrows >= s->stop_after;
+}
+
+typedef struct { int terminal; int direction; } ev_user;
+
+static int
+out_event (double te, const double *ye, int ie, void *u)
+{
+  (void) u;
+  sink *s = &S;
+  if (s->nev < 1000)
+    {
+      s->te[s->nev] = te;
+      s->ie[s->nev] = ie;
+      s->ye[s->nev][0] = ye[0];
+      s->ye[s->nev][1] = ye[1];
+    }
+  s->nev++;
+  return 0;
+}
+
+/* events: q = 0 (any direction, terminal per flag), p = 0.5 rising */
+static int
+ev_fn (double t, const double *y, double *v, int *term, int *dir, void *u)
+{
+  (void) t;
+  ev_user *eu = u;
+  v[0] = y[0];
+  v[1] = y[1] - 0.5;
+  term[0] = eu->terminal;
+  term[1] = 0;
+  dir[0] = eu->direction;
+  dir[1] = 1;
+  return 0;
+}
+
+static void
+setup (sym_system *sys, ho_user *hu, sym_driver_opts *o, const double *atol)
+{
+  memset (sys, 0, sizeof *sys);
+  memset (hu, 0, sizeof *hu);
+  hu->nan_after = INFINITY;
+  sys->dim = 1;
+  sys->rhs = ho_rhs;
+  sys->user = hu;
+  memset (o, 0, sizeof *o);
+  o->t0 = 0;
+  o->tf = 10;
+  o->refine = 1;
+  o->rtol = 1e-6;
+  o->atol = atol;
+  o->atol_len = 1;
+  o->output = out_row;
+  o->output_user = &S;
+  o->event_out = out_event;
+  o->event_user = NULL;
+  memset (&S, 0, sizeof S);
+}
+
+int
+main (void)
+{
+  sym_system sys;
+  ho_user hu;
+  sym_driver_opts o;
+  sym_method_opts mo;
+  memset (&mo, 0, sizeof mo);
+  double atol = 1e-8, y0[2] = { 1, 0 }, tr;
+  int st;
+
+  /* fixed step, h not dividing the interval: the last step ends on tf */
+  setup (&sys, &hu, &o, &atol);
+  o.h_fixed = 0.3;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (st == SYM_DONE, "status %s", sym_status_name (st));
+  CHECK (S.nrows == 35, "rows %d", S.nrows);   /* ceil(10/0.3) = 34 steps */
+  CHECK (S.t[S.nrows - 1] == 10.0, "last t %.17g", S.t[S.nrows - 1]);
+  CHECK_CLOSE (S.t[10], 3.0, 1e-15, "t_10 = t0 + 10 h, not accumulated");
+  CHECK_CLOSE (S.y[S.nrows - 1][0], cos (10.0), 1e-13, "exact flow");
+  CHECK (sys.cnt.nsteps == 34, "nsteps %ld", sys.cnt.nsteps);
+  CHECK (tr == 10.0, "t reached");
+
+  /* fixed step, h dividing the interval up to rounding: no tiny step */
+  setup (&sys, &hu, &o, &atol);
+  o.h_fixed = 0.1;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (S.nrows == 101, "rows %d", S.nrows);
+
+  /* TimeStepNumber with TimeStepSize: exactly N steps from t0 */
+  setup (&sys, &hu, &o, &atol);
+  o.h_fixed = 0.25;
+  o.nsteps_fixed = 7;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (S.nrows == 8 && S.t[7] == 1.75, "rows %d, t %.17g", S.nrows,
+         S.t[7]);
+  /* TimeStepNumber alone: N equal steps over tspan */
+  setup (&sys, &hu, &o, &atol);
+  o.nsteps_fixed = 40;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (S.nrows == 41 && S.t[40] == 10.0 && S.t[4] == 1.0,
+         "rows %d", S.nrows);
+
+  /* backward */
+  setup (&sys, &hu, &o, &atol);
+  o.t0 = 1;
+  o.tf = -2;
+  o.h_fixed = 0.5;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (st == SYM_DONE && S.nrows == 7 && S.t[6] == -2 && S.t[1] == 0.5,
+         "backward rows %d", S.nrows);
+  CHECK_CLOSE (S.y[6][0], cos (-3.0), 1e-13, "backward exact");
+
+  /* output times: rows exactly there, from the dense output, steps not
+     shortened (number of steps unchanged) */
+  {
+    double tout[101];
+    for (int i = 0; i <= 100; i++)
+      tout[i] = 0.1 * i + (i > 0 && i < 100 ? 0.01234 : 0);
+    setup (&sys, &hu, &o, &atol);
+    o.h_fixed = 0.3;
+    o.tout = tout;
+    o.ntout = 101;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (S.nrows == 101, "rows %d", S.nrows);
+    CHECK (sys.cnt.nsteps == 34, "steps %ld", sys.cnt.nsteps);
+    double maxerr = 0;
+    int exact_t = 1;
+    for (int i = 0; i < S.nrows; i++)
+      {
+        maxerr = fmax (maxerr, fabs (S.y[i][0] - cos (tout[i])));
+        exact_t &= S.t[i] == tout[i];
+      }
+    CHECK (exact_t, "output at the requested times");
+    CHECK (maxerr < 1e-13, "dense error %.3g", maxerr);
+  }
+
+  /* refine: refine rows per step */
+  setup (&sys, &hu, &o, &atol);
+  o.h_fixed = 0.5;
+  o.refine = 4;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (S.nrows == 20 * 4 + 1, "rows %d", S.nrows);
+  CHECK_CLOSE (S.t[1], 0.125, 1e-15, "refined time");
+  CHECK_CLOSE (S.y[1][0], cos (0.125), 1e-14, "refined value");
+
+  /* events with the exact flow: zeros of q at pi/2 + k pi, and of
+     p - 0.5 rising at 2 pi - pi/6 + 2 k pi, located to round-off */
+  {
+    static ev_user eu;
+    eu.terminal = 0;
+    eu.direction = 0;
+    setup (&sys, &hu, &o, &atol);
+    o.h_fixed = 0.3;
+    o.nevents = 2;
+    o.events = ev_fn;
+    o.event_user = &eu;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_DONE, "events run %s", sym_status_name (st));
+    int nq = 0, np = 0, ordered = 1;
+    double eq = 0, ep = 0;
+    for (int i = 0; i < S.nev; i++)
+      {
+        if (i > 0)
+          ordered &= S.te[i] > S.te[i - 1];
+        if (S.ie[i] == 0)
+          {
+            eq = fmax (eq, fabs (S.te[i] - (M_PI / 2 + nq * M_PI)));
+            nq++;
+          }
+        else
+          {
+            /* p = -sin t = 0.5 rising: t = 2 pi - pi/6 + 2 k pi ... and
+               -sin t rising through 0.5 happens at t = 7 pi / 6 + 2 k pi */
+            eq = fmax (eq, 0);
+            ep = fmax (ep, fabs (S.te[i] - (7 * M_PI / 6 + np * 2 * M_PI)));
+            np++;
+          }
+      }
+    CHECK (nq == 3 && np == 2, "events found: %d %d", nq, np);
+    CHECK (eq < 1e-14 && ep < 1e-14, "event time errors %.3g %.3g", eq, ep);
+    CHECK (ordered, "events in time order");
+    CHECK (S.nrows == 35, "non-terminal events add no rows");
+  }
+
+  /* terminal event on q = 0 falling: stops at pi/2 exactly, last row */
+  {
+    static ev_user eu;
+    eu.terminal = 1;
+    eu.direction = -1;
+    setup (&sys, &hu, &o, &atol);
+    o.h_fixed = 0.3;
+    o.nevents = 2;
+    o.events = ev_fn;
+    o.event_user = &eu;
+    o.event_out = NULL;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_STOP_EVENT, "status %s", sym_status_name (st));
+    CHECK_CLOSE (S.t[S.nrows - 1], M_PI / 2, 1e-14, "terminal event time");
+    CHECK_CLOSE (S.y[S.nrows - 1][0], 0.0, 1e-14, "terminal event value");
+    CHECK (S.nrows == 7, "rows before pi/2 plus the event: %d", S.nrows);
+    CHECK_CLOSE (tr, M_PI / 2, 1e-14, "t reached");
+  }
+  /* rising only: the first rising zero of q is 3 pi / 2 */
+  {
+    static ev_user eu;
+    eu.terminal = 1;
+    eu.direction = 1;
+    setup (&sys, &hu, &o, &atol);
+    o.h_fixed = 0.3;
+    o.nevents = 2;
+    o.events = ev_fn;
+    o.event_user = &eu;
+    o.event_out = NULL;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_STOP_EVENT, "status");
+    CHECK_CLOSE (S.t[S.nrows - 1], 3 * M_PI / 2, 1e-14, "rising event");
+  }
+
+  /* adaptive: errors shrink with rtol; hmax respected */
+  {
+    double err[3], rt[3] = { 1e-4, 1e-6, 1e-8 };
+    long steps[3];
+    for (int k = 0; k < 3; k++)
+      {
+        setup (&sys, &hu, &o, &atol);
+        o.rtol = rt[k];
+        double at = rt[k];
+        o.atol = &at;
+        st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
+        CHECK (st == SYM_DONE, "adaptive %s", sym_status_name (st));
+        err[k] = fabs (S.y[S.nrows - 1][0] - cos (10.0));
+        steps[k] = sys.cnt.nsteps;
+        CHECK (S.t[S.nrows - 1] == 10.0, "ends on tf");
+      }
+    CHECK (err[0] > 5 * err[1] && err[1] > 5 * err[2],
+           "errors %.3g %.3g %.3g", err[0], err[1], err[2]);
+    CHECK (steps[0] < steps[1] && steps[1] < steps[2], "steps grow");
+
+    setup (&sys, &hu, &o, &atol);
+    o.hmax = 0.05;
+    o.rtol = 1e-2;
+    st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
+    int ok = 1;
+    for (int i = 1; i < S.nrows; i++)
+      ok &= S.t[i] - S.t[i - 1] <= 0.05 * (1 + 1e-12);
+    CHECK (ok && st == SYM_DONE, "hmax respected");
+    /* a too large initial step is rejected and retried */
+    setup (&sys, &hu, &o, &atol);
+    o.h0 = 5;
+    o.hmax = 5;
+    st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_DONE && sys.cnt.nfailed > 0, "rejections %ld",
+           sys.cnt.nfailed);
+    /* backward adaptive */
+    setup (&sys, &hu, &o, &atol);
+    o.tf = -10;
+    st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_DONE && S.t[S.nrows - 1] == -10.0, "backward adaptive");
+    CHECK (fabs (S.y[S.nrows - 1][0] - cos (10.0)) < 1e-3, "value");
+  }
+
+  /* NaN after t = 1: adaptive gives up with ENONFINITE, rows up to ~1 */
+  {
+    setup (&sys, &hu, &o, &atol);
+    hu.nan_after = 1.0;
+    st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_ENONFINITE, "status %s", sym_status_name (st));
+    CHECK (S.t[S.nrows - 1] <= 1.0 && S.t[S.nrows - 1] > 0.99,
+           "last row at %.17g", S.t[S.nrows - 1]);
+    int finite = 1;
+    for (int i = 0; i < S.nrows; i++)
+      finite &= isfinite (S.y[i][0]) && isfinite (S.y[i][1]);
+    CHECK (finite, "rows finite");
+    /* fixed: fails at once, at the step to 1.1 (rows t = 0, ..., 1) */
+    setup (&sys, &hu, &o, &atol);
+    hu.nan_after = 1.0;
+    o.h_fixed = 0.1;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_ENONFINITE && S.nrows == 11, "fixed NaN: %s, %d rows",
+           sym_status_name (st), S.nrows);
+  }
+
+  /* a fatal callback status stops the run with SYM_ECALLBACK */
+  setup (&sys, &hu, &o, &atol);
+  hu.fatal_at = 30;
+  o.h_fixed = 0.1;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (st == SYM_ECALLBACK && S.nrows == 30, "fatal: %s rows %d",
+         sym_status_name (st), S.nrows);
+
+  /* the output sink asks to stop */
+  setup (&sys, &hu, &o, &atol);
+  S.stop_after = 5;
+  o.h_fixed = 0.1;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (st == SYM_STOP_OUTPUT && S.nrows == 5, "stop: %s rows %d",
+         sym_status_name (st), S.nrows);
+
+  /* bad input */
+  setup (&sys, &hu, &o, &atol);
+  o.tf = 0;
+  CHECK (sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr)
+         == SYM_EBADINPUT, "t0 == tf refused");
+  setup (&sys, &hu, &o, &atol);
+  o.rtol = 0;
+  CHECK (sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr)
+         == SYM_EBADINPUT, "rtol 0 refused");
+
+  return tu_finish ("test_driver");
+}

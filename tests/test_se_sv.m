@@ -1,0 +1,239 @@
+## Tests of odeSE and odeSV through the Octave interface: orders,
+## symplecticity, long-time energy, momenta, reversibility, the explicit
+## separable paths, the four Jacobian sources, forcing, adaptive control.
+## References are independent of the package: ode45 at tight tolerances,
+## analytic solutions and exact invariants.
+
+%!function dy = nonsep (t, y)
+%!  ## H = p^2/2 (1 + q^2) + q^2/2
+%!  q = y(1); p = y(2);
+%!  dy = [p * (1 + q^2); -(p^2 * q + q)];
+%!endfunction
+
+%!function [dy, ddy] = nonsep2 (t, y)
+%!  q = y(1); p = y(2);
+%!  dy = [p * (1 + q^2); -(p^2 * q + q)];
+%!  ddy = [p^2 + 1, 2*p*q; 2*p*q, 1 + q^2];
+%!endfunction
+
+%!function H = nonsep_hess (t, y)
+%!  q = y(1); p = y(2);
+%!  H = [p^2 + 1, 2*p*q; 2*p*q, 1 + q^2];
+%!endfunction
+
+%!function Df = nonsep_jac (t, y)
+%!  q = y(1); p = y(2);
+%!  Df = [2*p*q, 1 + q^2; -(p^2 + 1), -2*p*q];
+%!endfunction
+
+%!function dy = pendulum (t, y)
+%!  dy = [y(2); -sin(y(1))];
+%!endfunction
+
+%!function dy = kepler (t, y)
+%!  q = y(1:2);
+%!  dy = [y(3:4); -q / norm(q)^3];
+%!endfunction
+
+%!function yref = reference (f, tf, y0)
+%!  o = odeset ("RelTol", 1e-12, "AbsTol", 1e-13);
+%!  [~, y] = ode45 (f, [0, tf], y0, o);
+%!  yref = y(end, :);
+%!endfunction
+
+%!function s = slopes (solver, f, tf, y0, hs, yref, varargin)
+%!  err = zeros (size (hs));
+%!  for i = 1:numel (hs)
+%!    o = symplecticset ("TimeStepSize", hs(i), varargin{:});
+%!    [~, y] = solver (f, [0, tf], y0, o);
+%!    err(i) = norm (y(end, :) - yref, Inf);
+%!  endfor
+%!  s = log2 (err(1:end-1) ./ err(2:end));
+%!endfunction
+
+## ----------------------------------------------------------------- orders
+%!test
+%! hs = 0.1 ./ 2.^(0:3);
+%! yref = reference (@nonsep, 2, [0.5; 0.5]);
+%! s = slopes (@odeSE, @nonsep, 2, [0.5; 0.5], hs, yref);
+%! assert (all (abs (s - 1) <= 0.1), "odeSE slopes %s", mat2str (s, 3));
+%! s = slopes (@odeSV, @nonsep, 2, [0.5; 0.5], hs, yref);
+%! assert (all (abs (s - 2) <= 0.1), "odeSV slopes %s", mat2str (s, 3));
+
+%!test
+%! hs = 0.1 ./ 2.^(0:3);
+%! yref = reference (@pendulum, 5, [1; 1]);
+%! s = slopes (@odeSE, @pendulum, 5, [1; 1], hs, yref);
+%! assert (all (abs (s - 1) <= 0.1), "odeSE slopes %s", mat2str (s, 3));
+%! s = slopes (@odeSV, @pendulum, 5, [1; 1], hs, yref);
+%! assert (all (abs (s - 2) <= 0.1), "odeSV slopes %s", mat2str (s, 3));
+%! s = slopes (@odeSV, @pendulum, 5, [1; 1], hs, yref, "Separable", "on");
+%! assert (all (abs (s - 2) <= 0.1), "odeSV explicit slopes %s", mat2str (s, 3));
+%! s = slopes (@odeSE, @pendulum, 5, [1; 1], hs, yref, "Separable", "on");
+%! assert (all (abs (s - 1) <= 0.1), "odeSE explicit slopes %s", mat2str (s, 3));
+
+## ----------------------------------------------------------------- symplecticity
+%!test
+%! ## the Jacobian M of one step satisfies M' J M = J
+%! J = [0 1; -1 0];
+%! y0 = [0.3; -0.7];  h = 0.2;  del = 1e-5;
+%! for solver = {@odeSE, @odeSV}
+%!   o = symplecticset ("TimeStepSize", h);
+%!   M = zeros (2);
+%!   for j = 1:2
+%!     e = zeros (2, 1); e(j) = del;
+%!     [~, yp] = solver{1} (@nonsep, [0 h], y0 + e, o);
+%!     [~, ym] = solver{1} (@nonsep, [0 h], y0 - e, o);
+%!     M(:, j) = (yp(end, :) - ym(end, :)).' / (2 * del);
+%!   endfor
+%!   assert (norm (M.' * J * M - J) <= 1e-8);
+%!   ## and the map is not trivially the identity
+%!   assert (norm (M - eye (2)) > 0.1);
+%! endfor
+
+## ----------------------------------------------------------------- long time
+%!test
+%! ## harmonic oscillator, h = 0.1, 1e5 steps: bounded energy, no drift
+%! f = @(t, y) [y(2); -y(1)];
+%! o = symplecticset ("TimeStepSize", 0.1, "Separable", "on");
+%! [t, y] = odeSV (f, [0, 1e4], [1; 0], o);
+%! assert (numel (t), 1e5 + 1);
+%! E = (y(:, 1).^2 + y(:, 2).^2) / 2;
+%! rel = abs (E - 0.5) / 0.5;
+%! assert (max (rel) <= 3e-3);
+%! n10 = round (numel (rel) / 10);
+%! assert (max (rel(end-n10+1:end)) <= 1.5 * max (rel(1:n10)));
+
+%!test
+%! ## Kepler: angular momentum to 1e-12 relative over 1e4 fixed steps
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! L0 = y0(1) * y0(4) - y0(2) * y0(3);
+%! for solver = {@odeSE, @odeSV}
+%!   for sep = {"off", "on"}
+%!     o = symplecticset ("TimeStepSize", 0.01, "Separable", sep{1});
+%!     [t, y] = solver{1} (@kepler, [0, 100], y0, o);
+%!     assert (numel (t), 1e4 + 1);
+%!     L = y(:, 1) .* y(:, 4) - y(:, 2) .* y(:, 3);
+%!     assert (max (abs (L - L0)) / abs (L0) <= 1e-12);
+%!   endfor
+%! endfor
+
+%!test
+%! ## odeSV is time-reversible
+%! N = 200;  h = 0.05;  y0 = [0.3; -0.7];
+%! o = symplecticset ("TimeStepSize", h);
+%! [~, y] = odeSV (@nonsep, [0, N*h], y0, o);
+%! [~, yb] = odeSV (@nonsep, [N*h, 0], y(end, :), o);
+%! assert (numel (yb(:, 1)), N + 1);
+%! assert (norm (yb(end, :).' - y0, Inf) <= 1e-12 * N);
+%! ## while odeSE is not (its adjoint differs), so the test can fail
+%! [~, y] = odeSE (@nonsep, [0, N*h], y0, o);
+%! [~, yb] = odeSE (@nonsep, [N*h, 0], y(end, :), o);
+%! assert (norm (yb(end, :).' - y0, Inf) > 1e-6);
+
+## ----------------------------------------------------------------- separable
+%!test
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! for solver = {@odeSE, @odeSV}
+%!   o1 = symplecticset ("TimeStepSize", 0.01, "Stats", "off");
+%!   o2 = symplecticset (o1, "Separable", "on");
+%!   s1 = solver{1} (@kepler, [0, 20], y0, o1);
+%!   s2 = solver{1} (@kepler, [0, 20], y0, o2);
+%!   assert (s2.y, s1.y, 1e-12);
+%!   calls = s2.stats.nfevals / s2.stats.nsteps;
+%!   assert (calls <= 2.05, "%.3f calls per step", calls);
+%!   assert (s2.stats.nnewton, 0);
+%!   assert (s1.stats.nnewton > 0);
+%! endfor
+
+## ----------------------------------------------------------------- Jacobians
+%!test
+%! y0 = [0.5; 0.5];
+%! for solver = {@odeSE, @odeSV}
+%!   o = symplecticset ("TimeStepSize", 0.05);
+%!   s1 = solver{1} (@nonsep, [0 3], y0, o);                        # FD
+%!   s2 = solver{1} (@nonsep2, [0 3], y0, o);                       # 2nd output
+%!   s3 = solver{1} (@nonsep, [0 3], y0, symplecticset (o, "HamiltonianHessFcn", @nonsep_hess));
+%!   s4 = solver{1} (@nonsep, [0 3], y0, symplecticset (o, "Jacobian", @nonsep_jac));
+%!   assert (s1.stats.jacobian_source, "finite differences of FCN");
+%!   assert (s2.stats.jacobian_source, "second output of FCN (Hessian)");
+%!   assert (s3.stats.jacobian_source, "HamiltonianHessFcn");
+%!   assert (s4.stats.jacobian_source, "Jacobian (function)");
+%!   assert (s2.y, s1.y, 1e-10);
+%!   assert (s3.y, s1.y, 1e-10);
+%!   assert (s4.y, s1.y, 1e-10);
+%!   assert (s2.stats.npds > 0 && s3.stats.npds > 0 && s4.stats.npds > 0);
+%!   assert (s1.stats.nfdevals > 0);
+%! endfor
+
+%!test
+%! ## a Hessian as a column-major vector (the 2013 convention), and a
+%! ## constant Jacobian matrix for a linear problem
+%! f = @(t, y) [y(2); -4*y(1)];
+%! o = symplecticset ("TimeStepSize", 0.01);
+%! s1 = odeSV (f, [0 2], [1; 0], o);
+%! s2 = odeSV (f, [0 2], [1; 0], symplecticset (o, "HamiltonianHessFcn", @(t, y) [4; 0; 0; 1]));
+%! s3 = odeSV (f, [0 2], [1; 0], symplecticset (o, "Jacobian", [0 1; -4 0]));
+%! assert (s2.y, s1.y, 1e-12);
+%! assert (s3.y, s1.y, 1e-12);
+%! assert (s3.stats.jacobian_source, "Jacobian (constant matrix)");
+
+## ----------------------------------------------------------------- forcing
+%!test
+%! ## damped oscillator q'' + c q' + q = 0, forcing -c p, against the
+%! ## analytic solution; the error has the method's order
+%! c = 0.1;  w = sqrt (1 - c^2/4);
+%! f = @(t, y) [y(2); -y(1) - c * y(2)];
+%! qex = @(t) exp (-c*t/2) .* (cos (w*t) + c/(2*w) * sin (w*t));
+%! pex = @(t) -exp (-c*t/2) .* (1 + c^2/(4*w^2)) * w .* sin (w*t);
+%! tf = 5;  hs = 0.1 ./ 2.^(0:2);
+%! for k = 1:2
+%!   solver = {@odeSE, @odeSV}{k};
+%!   err = zeros (size (hs));
+%!   for i = 1:numel (hs)
+%!     [t, y] = solver (f, [0 tf], [1; 0], symplecticset ("TimeStepSize", hs(i)));
+%!     err(i) = norm ([y(end, 1) - qex(tf), y(end, 2) - pex(tf)], Inf);
+%!   endfor
+%!   s = log2 (err(1:end-1) ./ err(2:end));
+%!   assert (all (abs (s - k) <= 0.1), "slopes %s", mat2str (s, 3));
+%!   ## the damping is really there
+%!   assert (y(end, 1)^2 + y(end, 2)^2 < 0.7);
+%! endfor
+
+## ----------------------------------------------------------------- adaptive
+%!test
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! tf = 2*pi;
+%! yref = y0.';   # one period returns to the start
+%! err = zeros (1, 3);  nst = err;
+%! rt = [1e-4 1e-5 1e-6];
+%! for i = 1:3
+%!   o = odeset ("RelTol", rt(i), "AbsTol", rt(i) * 1e-2);
+%!   s = odeSV (@kepler, [0 tf], y0, o);
+%!   err(i) = norm (s.y(:, end).' - yref, Inf);
+%!   nst(i) = s.stats.nsteps;
+%! endfor
+%! assert (all (err(1:end-1) ./ err(2:end) >= 4), "errors %s", mat2str (err, 3));
+%! assert (all (diff (nst) > 0));
+
+%!test
+%! ## odeSE adaptive: tighter tolerance, smaller error
+%! e = 0.3;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! err = zeros (1, 2);
+%! rt = [1e-3 1e-4];
+%! for i = 1:2
+%!   s = odeSE (@kepler, [0 2*pi], y0, odeset ("RelTol", rt(i), "AbsTol", rt(i)));
+%!   err(i) = norm (s.y(:, end) - y0, Inf);
+%! endfor
+%! assert (err(1) / err(2) >= 2.5, "errors %s", mat2str (err, 3));
+
+## ----------------------------------------------------------------- backward
+%!test
+%! f = @(t, y) [y(2); -y(1)];
+%! [t, y] = odeSV (f, [1, -2], [cos(1); -sin(1)], symplecticset ("TimeStepSize", 1e-3));
+%! assert (t(end), -2);
+%! assert (all (diff (t) < 0));
+%! assert (y(end, :), [cos(-2), -sin(-2)], 1e-6);
+%! [t, y] = odeSE (f, [1, -2], [cos(1); -sin(1)], odeset ("RelTol", 1e-6, "AbsTol", 1e-8));
+%! assert (t(end), -2);
+%! assert (y(end, :), [cos(-2), -sin(-2)], 1e-3);
