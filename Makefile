@@ -1,0 +1,118 @@
+# Makefile -- developer entry point of the symplectic Octave package.
+#
+#   make [all]          install missing Debian dependencies, build the MEX files
+#   make demo           all, then run tools/demo.m
+#   make check          all, then the whole test suite (C tests + Octave tests)
+#   make valgrind       the C tests under valgrind
+#   make dist           symplectic-<version>.tar.gz, the tarball pkg install takes
+#   make install        dist, then pkg install it into Octave
+#   make check-installed  install the tarball into a temporary prefix, test it there
+#   make bench          all, then bench/run_benchmarks.m
+#   make clean
+#
+# The MEX files are linked into inst/, next to the same-name m-files that
+# hold their help and tests (see src/Makefile for why).
+
+# bash for pipefail: `make check` tees the output of its parts.
+SHELL := /bin/bash -o pipefail
+
+OCTAVE    ?= octave-cli
+MKOCTFILE ?= mkoctfile
+export MKOCTFILE
+
+# --norc: no user or site startup files, so runs are reproducible.
+OCTAVE_RUN := $(OCTAVE) --norc --quiet --no-gui
+
+PACKAGE  := $(shell sed -n 's/^Name:[[:space:]]*//p' DESCRIPTION)
+VERSION  := $(shell sed -n 's/^Version:[[:space:]]*//p' DESCRIPTION)
+DISTNAME := $(PACKAGE)-$(VERSION)
+TARBALL  := $(DISTNAME).tar.gz
+
+# What the tarball holds: what pkg install needs, plus the tests.
+DIST_FILES := DESCRIPTION INDEX COPYING NEWS README.md inst src tests
+
+all: deps
+	$(MAKE) -C src
+
+deps:
+	sh tools/install-deps.sh
+
+# Build only (no dependency check).
+mex:
+	$(MAKE) -C src
+
+demo: all
+	$(OCTAVE) --norc --no-gui --path "$(CURDIR)/inst" tools/demo.m
+
+# Runs the C and the Octave tests (the second even if the first fails),
+# then prints the totals as its last line, "N passed, M failed", and fails
+# if any test failed.  A part that printed no summary (e.g. it did not
+# build) counts as one failure.
+check: all
+	@mkdir -p build; status=0; \
+	$(MAKE) --no-print-directory check-c 2>&1 | tee build/check-c.log \
+	  || status=1; \
+	$(MAKE) --no-print-directory check-octave 2>&1 | tee build/check-octave.log \
+	  || status=1; \
+	c=$$(sed -n 's/^C tests.*: \([0-9]* passed, [0-9]* failed\)$$/\1/p' build/check-c.log | tail -n 1); \
+	o=$$(sed -n 's/^\([0-9]* passed, [0-9]* failed\)$$/\1/p' build/check-octave.log | tail -n 1); \
+	echo "C tests:      $${c:-no summary (counted as 1 failure)}"; \
+	echo "Octave tests: $${o:-no summary (counted as 1 failure)}"; \
+	set -- $${c:-0 passed, 1 failed}; p=$$1; f=$$3; \
+	set -- $${o:-0 passed, 1 failed}; p=$$((p + $$1)); f=$$((f + $$3)); \
+	if [ $$f -ne 0 ]; then status=1; fi; \
+	if [ $$status -ne 0 ] && [ $$f -eq 0 ]; then f=1; fi; \
+	echo "$$p passed, $$f failed"; \
+	exit $$status
+
+check-c:
+	$(MAKE) -C tests/c check
+
+# tests/run_tests.m prints "N passed, M failed" last and returns the exit
+# status (non-zero on any failure or when no test ran).
+check-octave: mex
+	$(OCTAVE_RUN) --eval 'addpath ("$(CURDIR)/tests"); exit (run_tests ())'
+
+valgrind: deps
+	$(MAKE) -C tests/c valgrind
+
+bench: all
+	$(OCTAVE) --norc --no-gui --path "$(CURDIR)/inst" bench/run_benchmarks.m
+
+# Stage a clean copy (no build products) and pack it as DISTNAME/.
+dist:
+	rm -rf build/dist $(TARBALL)
+	mkdir -p build/dist/$(DISTNAME)
+	cp -R $(DIST_FILES) build/dist/$(DISTNAME)/
+	cd build/dist/$(DISTNAME) && \
+	  rm -rf tests/c/build && \
+	  find . \( -name '*.o' -o -name '*.mex' -o -name '*.oct' -o -name '*.c-tst' \
+	            -o -name '*.d' -o -name 'fntests.log' -o -name 'octave-workspace' \) \
+	         -exec rm -f {} +
+	tar -C build/dist --owner=0 --group=0 --numeric-owner \
+	    -czf $(TARBALL) $(DISTNAME)
+	rm -rf build/dist
+	@echo "dist: $(TARBALL)"
+
+# pkg install: global (/usr/share/octave/packages) when run as root, into
+# ~/.local/share/octave otherwise; running it again replaces the copy.
+install: dist
+	$(OCTAVE_RUN) --eval 'pkg install "$(CURDIR)/$(TARBALL)"'
+	@echo "installed; in Octave: pkg load $(PACKAGE)"
+
+# A throw-away local package prefix and list, so nothing of the system's
+# Octave is touched; then the tests of the installed copy.
+check-installed: dist
+	@tmp=$$(mktemp -d) && trap 'rm -rf "$$tmp"' EXIT && \
+	$(OCTAVE_RUN) --eval "pkg prefix '$$tmp/pkg' '$$tmp/arch'; \
+	  pkg local_list '$$tmp/octave_packages'; \
+	  pkg install -local '$(CURDIR)/$(TARBALL)'; \
+	  addpath ('$(CURDIR)/tests'); exit (run_tests ('installed'))"
+
+clean:
+	$(MAKE) -C src clean
+	$(MAKE) -C tests/c clean
+	rm -rf build $(PACKAGE)-*.tar.gz fntests.log octave-workspace
+
+.PHONY: all deps mex demo check check-c check-octave valgrind bench dist \
+        install check-installed clean
