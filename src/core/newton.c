@@ -126,7 +126,11 @@ new_matrix (sym_newton *nw, const sym_newton_problem *p, const double *x,
 {
   int st = p->matrix (p->ctx, x, nw->lu.a);
   if (st)
-    return st;
+    {
+      /* the callback may have written part of the matrix: drop it */
+      sym_newton_invalidate (nw);
+      return st;
+    }
   st = sym_lu_factor (&nw->lu, c);
   nw->have_matrix = (st == SYM_SUCCESS);
   nw->fresh = nw->have_matrix;
@@ -142,7 +146,11 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
   const double floor_tol = 16.0 * DBL_EPSILON;
   int st;
   int refreshes = 0;
-  double eta = pow (fmax (nw->eta, DBL_EPSILON), 0.8);
+  /* The rate of the last solve stands in for theta before this solve has
+     its own; a tiny carried rate would accept a first correction far above
+     round-off, so it is floored (then one iteration suffices only when
+     the first correction is already below 1e3 * tol). */
+  double eta = fmax (pow (fmax (nw->eta, DBL_EPSILON), 0.8), 1e-3);
 
   nw->iters = 0;
   nw->fresh = 0;

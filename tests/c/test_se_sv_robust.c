@@ -1,0 +1,585 @@
+/* test_se_sv_robust.c -- SE and SV steppers: separable vs general paths,
+   rhs calls per step, Jacobian sources, LU reuse, failure injection (rhs,
+   Jacobian, allocator), bad input, reset. */
+#include "se_sv_systems.h"
+
+static const sym_stepper_type *
+stepper (int sv)
+{
+  return sv ? sym_step_sv : sym_step_se;
+}
+
+static const char *
+mname (int sv)
+{
+  return sv ? "SV" : "SE";
+}
+
+/* ------------------------------------------------------------ separable */
+static void
+test_separable (void)
+{
+  struct { int kind; double y0[4]; double h; } cases[] = {
+    { P_PEND, { 1.2, 0.3 }, 0.1 },
+    { P_PENDF, { 1.2, 0.3 }, 0.1 },
+    { P_HO, { 1, 0 }, 0.1 },
+    { P_KEPLER, { 0.4, 0, 0, 2 }, 0.005 },
+  };
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
+    for (int sv = 0; sv < 2; sv++)
+      {
+        tprob P;
+        sym_system sys = tp_system (&P, cases[c].kind, 1);
+        int n = 2 * sys.dim;
+        const long N = 500;
+        double y[2][2][8];
+        for (int sep = 0; sep < 2; sep++)
+          for (int err = 0; err < 2; err++)
+            {
+              sym_method_opts o = tp_opts (sep, err, 0);
+              int st = run_fixed (stepper (sv), &sys, &o, 0, cases[c].h, N,
+                                  cases[c].y0, y[sep][err], NULL, err);
+              CHECK (st == 0, "status %d", st);
+            }
+        double dsep = fmax (maxdiff (n, y[0][0], y[1][0]),
+                            maxdiff (n, y[0][1], y[1][1]));
+        double derr = fmax (maxdiff (n, y[0][0], y[0][1]),
+                            maxdiff (n, y[1][0], y[1][1]));
+        printf ("separable on/off %s kind %d: %ld steps, |difference| %.2e "
+                "(with/without error estimate %.2e)\n", mname (sv),
+                cases[c].kind, N, dsep, derr);
+        CHECK (dsep <= 1e-12, "%s kind %d: %g", mname (sv), cases[c].kind,
+               dsep);
+        CHECK (derr <= 1e-13, "%s kind %d: %g", mname (sv), cases[c].kind,
+               derr);
+      }
+}
+
+/* ------------------------------------------------------------ calls/step */
+static void
+test_calls (void)
+{
+  printf ("calls per fixed step (N = 1000 from t0 = -0.35, driver-style "
+          "times):\n");
+  struct { int kind; double y0[4]; double h; } cases[] = {
+    { P_PEND, { 1.2, 0.3 }, 0.01 },
+    { P_KEPLER, { 0.4, 0, 0, 2 }, 0.005 },
+    { P_H1, { 0.5, 0.8 }, 0.01 },
+    { P_H2, { 0.3, -0.4, 0.5, 0.2 }, 0.01 },
+  };
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
+    for (int sv = 0; sv < 2; sv++)
+      for (int sep = 0; sep < 2; sep++)
+        for (int err = 0; err < 2; err++)
+          for (int jac = 1; jac >= 0; jac--)
+            {
+              if (sep && (cases[c].kind == P_H1 || cases[c].kind == P_H2))
+                continue;
+              if (sep && ! jac)
+                continue;
+              tprob P;
+              sym_system sys = tp_system (&P, cases[c].kind, jac);
+              const long N = 1000;
+              double y[8];
+              sym_method_opts o = tp_opts (sep, err, 0);
+              int st = run_fixed (stepper (sv), &sys, &o, -0.35, cases[c].h,
+                                  N, cases[c].y0, y, NULL, err);
+              CHECK (st == 0, "status %d", st);
+              double cps = (double) sys.cnt.nrhs / N;
+              printf ("  %s kind %d %s %s jac %-8s: rhs %.3f (fd %.3f), "
+                      "Newton it %.3f, LU %ld, jac calls %ld\n", mname (sv),
+                      cases[c].kind, sep ? "separable" : "general  ",
+                      err ? "+error" : "      ", jac ? "analytic" : "FD", cps,
+                      (double) sys.cnt.nfd / N, (double) sys.cnt.nnewton / N,
+                      sys.cnt.nlu, sys.cnt.njac);
+              if (sep)
+                {
+                  /* SE: 2 (the estimate's f(y_{k+1}) is the next step's
+                     first call); SV: 2 + 1 at the start, 3 with the
+                     estimate */
+                  double lim = (sv && err) ? 3.05 : 2.05;
+                  CHECK (cps <= lim, "%s sep err %d: %g calls/step",
+                         mname (sv), err, cps);
+                  CHECK (sys.cnt.nnewton == 0 && sys.cnt.nlu == 0
+                         && sys.cnt.njac == 0, "explicit path used Newton");
+                }
+            }
+}
+
+/* adaptive-style use of separable SE: random h, rejections (retries from
+   the same point), yerr every attempt: 2 calls per attempt */
+static void
+test_calls_adaptive (void)
+{
+  for (int sv = 0; sv < 2; sv++)
+    {
+      tprob P;
+      sym_system sys = tp_system (&P, P_PEND, 1);
+      sym_method_opts o = tp_opts (1, 1, 0);
+      int st;
+      void *S = stepper (sv)->alloc (&sys, &o, &st);
+      double y[2] = { 1.2, 0.3 }, yn[2], ye[2], t = 0, h = 0.05;
+      long attempts = 0, accepted = 0;
+      srand (7);
+      while (accepted < 500 && ! st)
+        {
+          st = stepper (sv)->step (S, &sys, t, h, y, yn, ye);
+          attempts++;
+          if (rand () % 4 == 0)   /* reject: retry with a smaller h */
+            {
+              h *= 0.6;
+              continue;
+            }
+          stepper (sv)->accept (S);
+          accepted++;
+          t += h;
+          memcpy (y, yn, sizeof y);
+          h *= 1.0 + 0.5 * (rand () / (double) RAND_MAX);
+          h = fmin (h, 0.1);
+        }
+      CHECK (st == 0, "status %d", st);
+      double cpa = (double) sys.cnt.nrhs / attempts;
+      printf ("adaptive-style separable %s with error estimate: %ld attempts "
+              "(%ld accepted), %.3f rhs calls per attempt\n", mname (sv),
+              attempts, accepted, cpa);
+      if (! sv)
+        CHECK (sys.cnt.nrhs == 2 * attempts + 1, "SE: %ld calls for %ld",
+               sys.cnt.nrhs, attempts);
+      else
+        CHECK (sys.cnt.nrhs <= 3 * attempts + 1, "SV: %ld calls for %ld",
+               sys.cnt.nrhs, attempts);
+      stepper (sv)->free (S);
+    }
+}
+
+/* ------------------------------------------------------------ jacobians */
+static void
+test_jacobian_sources (void)
+{
+  /* the test problems' own Df against differences of their f */
+  int kinds[] = { P_H1, P_H1F, P_H2, P_KEPLER, P_DAMPED, P_PENDF };
+  for (size_t c = 0; c < sizeof kinds / sizeof kinds[0]; c++)
+    {
+      tprob P;
+      sym_system sys = tp_system (&P, kinds[c], 1);
+      int n = 2 * sys.dim;
+      double y[4] = { 0.3, -0.4, 0.5, 0.2 }, J[64], Jn[64], yp[4], ym[4],
+             fp[4], fm[4];
+      if (n == 2)
+        y[0] = 0.7, y[1] = -0.3;
+      if (kinds[c] == P_KEPLER)
+        y[0] = 0.8;
+      tp_df (&P, 0.3, y, J);
+      for (int j = 0; j < n; j++)
+        {
+          memcpy (yp, y, sizeof y);
+          memcpy (ym, y, sizeof y);
+          yp[j] += 1e-6;
+          ym[j] -= 1e-6;
+          tp_f (&P, 0.3, yp, fp);
+          tp_f (&P, 0.3, ym, fm);
+          for (int i = 0; i < n; i++)
+            Jn[i + j * n] = (fp[i] - fm[i]) / 2e-6;
+        }
+      CHECK (maxdiff (n * n, J, Jn) < 1e-8, "test Df kind %d: %g", kinds[c],
+             maxdiff (n * n, J, Jn));
+    }
+  /* runs with analytic Df and with sym_jac's finite differences */
+  struct { int kind; double y0[4]; double h; } cases[] = {
+    { P_H1, { 0.5, 0.8 }, 0.05 },
+    { P_H1F, { 0.5, 0.8 }, 0.05 },
+    { P_H2, { 0.3, -0.4, 0.5, 0.2 }, 0.05 },
+    { P_DAMPED, { 1, 0 }, 0.1 },
+    { P_KEPLER, { 0.4, 0, 0, 2 }, 0.005 },
+  };
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
+    for (int sv = 0; sv < 2; sv++)
+      {
+        double y[2][8];
+        long calls[2], nlu[2];
+        int n = 0;
+        for (int jac = 0; jac < 2; jac++)
+          {
+            tprob P;
+            sym_system sys = tp_system (&P, cases[c].kind, jac);
+            n = 2 * sys.dim;
+            sym_method_opts o = tp_opts (0, 0, 0);
+            int st = run_fixed (stepper (sv), &sys, &o, 0, cases[c].h, 400,
+                                cases[c].y0, y[jac], NULL, 0);
+            CHECK (st == 0, "status %d", st);
+            calls[jac] = sys.cnt.nrhs;
+            nlu[jac] = sys.cnt.nlu;
+          }
+        double dj = maxdiff (n, y[0], y[1]);
+        printf ("jacobian analytic vs FD %s kind %d: |difference| %.2e after "
+                "400 steps (rhs calls %ld vs %ld, LU %ld vs %ld)\n",
+                mname (sv), cases[c].kind, dj, calls[1], calls[0], nlu[1],
+                nlu[0]);
+        CHECK (dj <= 1e-10, "%s kind %d: %g", mname (sv), cases[c].kind, dj);
+      }
+}
+
+/* The Newton matrix is kept across steps (one LU for a whole run on a
+   linear problem, where it stays exact) and rebuilt after a change of h by
+   more than 20%.  On a nonlinear problem it is rebuilt when the extra
+   iterations it causes add up to the cost of a new Jacobian.  Measured
+   while tuning that rule (P_H1, h = 0.01, 5 time units, rhs + jac calls per
+   step): SE 5.92 with the matrix never rebuilt, 4.00 rebuilt every step,
+   3.97 with the rule; SV 10.50, 7.87, 7.83.  Here: bounds on the rule's
+   cost at h = 0.01 and 0.05. */
+static void
+test_lu_reuse (void)
+{
+  for (int sv = 0; sv < 2; sv++)
+    {
+      tprob P;
+      sym_system sys = tp_system (&P, P_DAMPED, 1);
+      sym_method_opts o = tp_opts (0, 0, 0);
+      int st;
+      void *S = stepper (sv)->alloc (&sys, &o, &st);
+      double y[2] = { 1, 0 }, yn[2], t = 0, h = 0.01;
+      for (int k = 0; k < 100; k++)
+        {
+          st |= stepper (sv)->step (S, &sys, t, h, y, yn, NULL);
+          stepper (sv)->accept (S);
+          t += h;
+          memcpy (y, yn, sizeof y);
+        }
+      long lu100 = sys.cnt.nlu;
+      st |= stepper (sv)->step (S, &sys, t, 1.1 * h, y, yn, NULL);
+      long lu_small = sys.cnt.nlu - lu100;
+      st |= stepper (sv)->step (S, &sys, t, 1.5 * h, y, yn, NULL);
+      long lu_big = sys.cnt.nlu - lu100 - lu_small;
+      CHECK (st == 0, "status");
+      printf ("LU reuse %s (damped oscillator): %ld factorizations in 100 "
+              "steps of h = 0.01 (Newton it/step %.2f); then h*1.1: %ld new, "
+              "h*1.5: %ld new\n", mname (sv), lu100, sys.cnt.nnewton / 100.0,
+              lu_small, lu_big);
+      CHECK (lu100 == (sv ? 2 : 1), "LU not reused: %ld", lu100);
+      CHECK (lu_small == 0, "h*1.1 refactored");
+      CHECK (lu_big == (sv ? 2 : 1), "h*1.5: %ld", lu_big);
+      stepper (sv)->free (S);
+    }
+  for (int sv = 0; sv < 2; sv++)
+    for (int ih = 0; ih < 2; ih++)
+      {
+        /* the P_H1 run is about 10 time units */
+        double h = ih ? 0.05 : 0.01;
+        long N = (long) (10 / h);
+        tprob P;
+        sym_system sys = tp_system (&P, P_H1, 1);
+        sym_method_opts o = tp_opts (0, 0, 0);
+        double y0[2] = { 0.5, 0.8 }, y[2];
+        int st = run_fixed (stepper (sv), &sys, &o, 0, h, N, y0, y, NULL, 0);
+        double cost = (double) (sys.cnt.nrhs + sys.cnt.njac) / N;
+        CHECK (st == 0, "status %d", st);
+        printf ("LU policy %s P_H1 h = %.2f: %.2f callbacks/step (rhs %.2f + "
+                "jac %.2f), Newton it/step %.2f, LU/step %.2f\n", mname (sv),
+                h, cost, (double) sys.cnt.nrhs / N, (double) sys.cnt.njac / N,
+                (double) sys.cnt.nnewton / N, (double) sys.cnt.nlu / N);
+        double lim = sv ? (ih ? 10.0 : 8.5) : (ih ? 5.5 : 4.5);
+        CHECK (cost <= lim, "%s h %g: %g callbacks/step", mname (sv), h, cost);
+      }
+}
+
+/* ------------------------------------------------------------ failures */
+/* Three steps (the first from a fresh start); on the failing step, check
+   the status, then retry it without the failure and go on: the result must
+   match the clean run. */
+typedef struct {
+  int sv, kind, sep, jac, err;
+} fcase;
+
+static int
+three_steps (const fcase *fc, tprob *P, sym_system *sys, double *y,
+             int *fail_status, int *fail_step)
+{
+  int st;
+  sym_method_opts o = tp_opts (fc->sep, fc->err, 1);
+  void *S = stepper (fc->sv)->alloc (sys, &o, &st);
+  if (! S)
+    return st;
+  double yn[8], ye[8], t = 0.2, h = 0.05, yd[8];
+  int n = 2 * sys->dim;
+  *fail_status = 0;
+  *fail_step = -1;
+  for (int k = 0; k < 3; k++)
+    {
+      st = stepper (fc->sv)->step (S, sys, t, h, y, yn, fc->err ? ye : NULL);
+      if (st)
+        {
+          *fail_status = st;
+          *fail_step = k;
+          if (st < 0 && k > 0)
+            {
+              /* the last accepted step is still there */
+              int sd = stepper (fc->sv)->dense (S, sys, t, yd);
+              CHECK (sd == 0 && maxdiff (n, yd, y) == 0, "dense after fail");
+            }
+          P->fail_at = P->jfail_at = 0;   /* the retry succeeds */
+          st = stepper (fc->sv)->step (S, sys, t, h, y, yn,
+                                       fc->err ? ye : NULL);
+          if (st)
+            break;
+        }
+      stepper (fc->sv)->accept (S);
+      t += h;
+      memcpy (y, yn, (size_t) n * sizeof (double));
+    }
+  stepper (fc->sv)->free (S);
+  return st;
+}
+
+static void
+test_failures (void)
+{
+  const double y0[3][4] = { { 0.5, 0.8 }, { 0.3, -0.4, 0.5, 0.2 },
+                            { 0.4, 0, 0, 2 } };
+  long ncases = 0, ninject = 0, njinject = 0;
+  int seen[3][8];
+  memset (seen, 0, sizeof seen);
+  for (int sv = 0; sv < 2; sv++)
+    for (int kc = 0; kc < 4; kc++)
+      for (int err = 0; err < 2; err++)
+        for (int jac = 0; jac < 2; jac++)
+          {
+            int kinds[] = { P_H1, P_H2, P_PEND, P_KEPLER };
+            fcase fc = { sv, kinds[kc], kc >= 2, jac, err };
+            if (fc.sep && ! jac)
+              continue;
+            const double *yi = (tp_dim (fc.kind) == 2) ? y0[1] : y0[0];
+            double yclean[8], y[8];
+            if (fc.kind == P_PEND)
+              yi = y0[0];
+            if (fc.kind == P_KEPLER)
+              yi = y0[2];
+            tprob P;
+            sym_system sys = tp_system (&P, fc.kind, jac);
+            int n = 2 * sys.dim, fs, fk;
+            memcpy (yclean, yi, (size_t) n * sizeof (double));
+            int st = three_steps (&fc, &P, &sys, yclean, &fs, &fk);
+            CHECK (st == 0 && fs == 0, "clean run %d %d", st, fs);
+            long calls = P.calls, jcalls = P.jcalls;
+            ncases++;
+            /* rhs failures at every call */
+            for (long at = 1; at <= calls; at++)
+              for (int mode = 1; mode <= 3; mode++)
+                {
+                  sys = tp_system (&P, fc.kind, jac);
+                  P.fail_at = at;
+                  P.fail_mode = mode;
+                  memcpy (y, yi, (size_t) n * sizeof (double));
+                  st = three_steps (&fc, &P, &sys, y, &fs, &fk);
+                  ninject++;
+                  /* inside a finite-difference Jacobian a failure is a
+                     failed matrix: Newton reports SYM_NEWTON_FAIL */
+                  int in_fd = ! jac;
+                  int ok;
+                  if (mode == 1)
+                    ok = fs == SYM_NONFINITE || (in_fd && fs == SYM_NEWTON_FAIL);
+                  else if (mode == 2)
+                    ok = fs == SYM_RECOVERABLE || (in_fd && fs == SYM_NEWTON_FAIL);
+                  else
+                    ok = fs == SYM_ECALLBACK;
+                  CHECK (ok, "%s kind %d sep %d jac %d err %d: rhs fail mode "
+                         "%d at call %ld -> status %d (%s)", mname (sv),
+                         fc.kind, fc.sep, jac, err, mode, at, fs,
+                         sym_status_name (fs));
+                  CHECK (sys.fail_status != 0, "fail_status not set");
+                  CHECK (st == 0, "retry failed: %d", st);
+                  double dv = maxdiff (n, y, yclean);
+                  CHECK (dv <= 1e-12, "after retry: %g", dv);
+                  seen[mode - 1][fs == SYM_NEWTON_FAIL ? 1 : 0]++;
+                }
+            /* Jacobian failures */
+            for (long at = 1; at <= jcalls; at++)
+              for (int mode = 1; mode <= 3; mode++)
+                {
+                  sys = tp_system (&P, fc.kind, jac);
+                  P.jfail_at = at;
+                  P.jfail_mode = mode;
+                  memcpy (y, yi, (size_t) n * sizeof (double));
+                  st = three_steps (&fc, &P, &sys, y, &fs, &fk);
+                  njinject++;
+                  int ok = mode == 3 ? fs == SYM_ECALLBACK
+                                     : fs == SYM_NEWTON_FAIL;
+                  CHECK (ok, "%s kind %d: jac fail mode %d at call %ld -> "
+                         "status %d (%s)", mname (sv), fc.kind, mode, at, fs,
+                         sym_status_name (fs));
+                  CHECK (st == 0, "retry failed: %d", st);
+                  CHECK (maxdiff (n, y, yclean) <= 1e-12, "after retry: %g",
+                         maxdiff (n, y, yclean));
+                }
+          }
+  printf ("failure injection: %ld configurations, %ld rhs failures, %ld "
+          "Jacobian failures injected (NaN: %d NONFINITE + %d NEWTON_FAIL; "
+          "+1: %d RECOVERABLE + %d NEWTON_FAIL; -1: %d ECALLBACK)\n", ncases,
+          ninject, njinject, seen[0][0], seen[0][1], seen[1][0], seen[1][1],
+          seen[2][0]);
+}
+
+/* Newton cannot converge: a recoverable failure, and the stepper goes on */
+static void
+test_newton_fail (void)
+{
+  for (int sv = 0; sv < 2; sv++)
+    {
+      tprob P;
+      sym_system sys = tp_system (&P, P_H1, 1);
+      sym_method_opts o = tp_opts (0, 1, 0);
+      int st;
+      void *S = stepper (sv)->alloc (&sys, &o, &st);
+      double y[2] = { 2.5, 3.0 }, yn[2], ye[2], yref[2];
+      st = stepper (sv)->step (S, &sys, 0, 5.0, y, yn, ye);
+      printf ("Newton at h = 5 on P_H1 from (2.5, 3) %s: status %d (%s)\n",
+              mname (sv), st, sym_status_name (st));
+      CHECK (st == SYM_NEWTON_FAIL, "%s: %d", mname (sv), st);
+      st = stepper (sv)->step (S, &sys, 0, 0.001, y, yn, ye);
+      CHECK (st == 0, "after the failure: %d", st);
+      (sv ? naive_sv : naive_se) (&P, 0, 0.001, y, yref);
+      CHECK (maxdiff (2, yn, yref) < 1e-13, "after the failure: %g",
+             maxdiff (2, yn, yref));
+      stepper (sv)->free (S);
+    }
+}
+
+/* ------------------------------------------------------------ allocator */
+static long alloc_count, alloc_fail_at;
+
+static void *
+counting_alloc (size_t n)
+{
+  alloc_count++;
+  if (alloc_count == alloc_fail_at)
+    return NULL;
+  return malloc (n);
+}
+
+static void
+test_alloc_failure (void)
+{
+  for (int sv = 0; sv < 2; sv++)
+    {
+      tprob P;
+      sym_system sys = tp_system (&P, P_H2, 0);
+      sym_method_opts o = tp_opts (0, 1, 1);
+      int st;
+      sym_set_allocator (counting_alloc, free);
+      alloc_count = 0;
+      alloc_fail_at = 0;
+      void *S = stepper (sv)->alloc (&sys, &o, &st);
+      long nalloc = alloc_count;
+      stepper (sv)->free (S);
+      for (long k = 1; k <= nalloc; k++)
+        {
+          alloc_count = 0;
+          alloc_fail_at = k;
+          st = 12345;
+          S = stepper (sv)->alloc (&sys, &o, &st);
+          CHECK (S == NULL && st == SYM_ENOMEM, "alloc failure %ld: %p %d", k,
+                 S, st);
+          if (S)
+            stepper (sv)->free (S);
+        }
+      /* a step whose finite-difference Jacobian cannot get memory */
+      alloc_count = 0;
+      alloc_fail_at = 0;
+      S = stepper (sv)->alloc (&sys, &o, &st);
+      alloc_fail_at = alloc_count + 1;
+      double y[4] = { 0.3, -0.4, 0.5, 0.2 }, yn[4], ye[4];
+      st = stepper (sv)->step (S, &sys, 0, 0.05, y, yn, ye);
+      CHECK (st == SYM_ENOMEM, "step without memory: %d", st);
+      alloc_fail_at = 0;
+      st = stepper (sv)->step (S, &sys, 0, 0.05, y, yn, ye);
+      CHECK (st == 0, "step after memory came back: %d", st);
+      stepper (sv)->free (S);
+      sym_set_allocator (NULL, NULL);
+      printf ("allocation failures %s: each of the %ld allocations of alloc "
+              "fails cleanly\n", mname (sv), nalloc);
+    }
+}
+
+/* ------------------------------------------------------------ misc */
+static void
+test_bad_input_and_reset (void)
+{
+  for (int sv = 0; sv < 2; sv++)
+    {
+      tprob P;
+      sym_system sys = tp_system (&P, P_PEND, 1);
+      sym_method_opts o = tp_opts (1, 0, 0);
+      int st;
+      CHECK (stepper (sv)->alloc (NULL, &o, &st) == NULL
+             && st == SYM_EBADINPUT, "NULL system");
+      sym_system bad = sys;
+      bad.dim = 0;
+      CHECK (stepper (sv)->alloc (&bad, &o, &st) == NULL
+             && st == SYM_EBADINPUT, "dim 0");
+      bad = sys;
+      bad.rhs = NULL;
+      CHECK (stepper (sv)->alloc (&bad, &o, NULL) == NULL, "no rhs");
+      void *S = stepper (sv)->alloc (&sys, NULL, &st);   /* default opts */
+      CHECK (S != NULL && st == 0, "NULL opts");
+      double y[2] = { 1.2, 0.3 }, yn[2];
+      CHECK (stepper (sv)->step (S, &sys, 0, 0.0, y, yn, NULL)
+             == SYM_EBADINPUT, "h = 0");
+      CHECK (stepper (sv)->step (S, &sys, 0, NAN, y, yn, NULL)
+             == SYM_EBADINPUT, "h = NaN");
+      CHECK (stepper (sv)->step (S, &sys, INFINITY, 0.1, y, yn, NULL)
+             == SYM_EBADINPUT, "t = Inf");
+      stepper (sv)->free (S);
+      stepper (sv)->free (NULL);
+
+      /* accept after a failed step takes nothing */
+      S = stepper (sv)->alloc (&sys, &o, &st);
+      P.fail_at = P.calls + 1;
+      P.fail_mode = 2;
+      CHECK (stepper (sv)->step (S, &sys, 0, 0.1, y, yn, NULL)
+             == SYM_RECOVERABLE, "injected failure");
+      stepper (sv)->accept (S);
+      CHECK (stepper (sv)->dense (S, &sys, 0.05, yn) == SYM_EBADINPUT,
+             "accept after a failure");
+      stepper (sv)->free (S);
+      P.fail_at = 0;
+
+      /* reset: the next step starts afresh (f(t_k, y_k) again) and gives
+         the same result */
+      S = stepper (sv)->alloc (&sys, &o, &st);
+      double y1[2], y2[2], y2b[2];
+      stepper (sv)->step (S, &sys, 0, 0.1, y, y1, NULL);
+      stepper (sv)->accept (S);
+      long c0 = sys.cnt.nrhs;
+      stepper (sv)->step (S, &sys, 0.1, 0.1, y1, y2, NULL);
+      long c_cont = sys.cnt.nrhs - c0;
+      stepper (sv)->reset (S);
+      CHECK (stepper (sv)->dense (S, &sys, 0.05, yn) == SYM_EBADINPUT,
+             "dense after reset");
+      c0 = sys.cnt.nrhs;
+      stepper (sv)->step (S, &sys, 0.1, 0.1, y1, y2b, NULL);
+      long c_reset = sys.cnt.nrhs - c0;
+      CHECK (maxdiff (2, y2, y2b) == 0, "after reset: %g",
+             maxdiff (2, y2, y2b));
+      if (sv)
+        CHECK (c_cont == 2 && c_reset == 3, "SV calls %ld %ld", c_cont,
+               c_reset);
+      else
+        CHECK (c_cont == 2 && c_reset == 2, "SE calls %ld %ld", c_cont,
+               c_reset);
+      stepper (sv)->free (S);
+    }
+}
+
+int
+main (void)
+{
+  test_separable ();
+  test_calls ();
+  test_calls_adaptive ();
+  test_jacobian_sources ();
+  test_lu_reuse ();
+  test_failures ();
+  test_newton_fail ();
+  test_alloc_failure ();
+  test_bad_input_and_reset ();
+  return tu_finish ("test_se_sv_robust");
+}
