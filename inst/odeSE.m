@@ -83,11 +83,13 @@
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
-## As in @code{ode45}.  Event times are located on the dense output
-## (cubic Hermite interpolation between steps, from @var{fcn} at the step
-## points; linear when only step points are requested).  @code{Refine}
+## As in @code{ode45}.  Event times, output times and refined rows come
+## from the dense output (cubic Hermite interpolation between steps, from
+## @var{fcn} at the step points).  @code{Refine}
 ## (default 1: step points only, where the method's properties hold) adds
-## interpolated rows between steps.  @code{Stats} prints steps, failed
+## interpolated rows between steps; as in @code{ode45} it is ignored with
+## more than two @var{tspan} elements and for the @var{sol} output.
+## @code{Stats} prints steps, failed
 ## steps, @var{fcn} calls, Newton iterations, Jacobian/Hessian evaluations
 ## and LU factorizations.
 ## @item Vectorized
@@ -116,3 +118,78 @@
 function varargout = odeSE (varargin)
   error ("odeSE: the compiled function odeSE.mex is missing; build the package with 'make'");
 endfunction
+
+%!demo
+%! ## Phase portrait of the pendulum H = p^2/2 - cos(q): librations inside
+%! ## the separatrix, rotations outside, all with one fixed step h = 0.05.
+%! pendulum = @(t, y) [y(2); -sin(y(1))];
+%! opts = symplecticset ("TimeStepSize", 0.05);
+%! figure ();
+%! hold on;
+%! for q0 = [0.5, 1, 1.5, 2, 2.5, 3]
+%!   [t, y] = odeSE (pendulum, [0 17], [q0; 0], opts);
+%!   plot (y(:,1), y(:,2), "b");
+%! endfor
+%! for p0 = [2.2, 2.6, -2.2, -2.6]
+%!   ## rotations: from one end of [-pi, pi] across to the other
+%!   [t, y] = odeSE (pendulum, [0 8], [-pi*sign(p0); p0], opts);
+%!   plot (y(:,1), y(:,2), "r");
+%! endfor
+%! hold off;
+%! axis ([-pi pi -3 3]);
+%! xlabel ("q");  ylabel ("p");
+%! title ("odeSE: phase portrait of the pendulum, h = 0.05");
+
+%!demo
+%! ## Energy error over time: symplectic Euler with a fixed step keeps it
+%! ## bounded (of size h, no drift); that of ode45 (default tolerances)
+%! ## grows with time.
+%! pendulum = @(t, y) [y(2); -sin(y(1))];
+%! E = @(y) y(:,2).^2/2 - cos (y(:,1));
+%! y0 = [2; 0];  tf = 200;
+%! opts = symplecticset ("TimeStepSize", 0.05, "Separable", "on");
+%! [t1, y1] = odeSE (pendulum, [0 tf], y0, opts);
+%! [t2, y2] = ode45 (pendulum, [0 tf], y0);
+%! dE1 = max (abs (E (y1) - E (y0')), eps);
+%! dE2 = max (abs (E (y2) - E (y0')), eps);
+%! figure ();
+%! semilogy (t1, dE1, "b", t2, dE2, "r");
+%! xlabel ("t");  ylabel ("|H(t) - H(0)|");
+%! legend ("odeSE, h = 0.05", "ode45", "location", "southeast");
+%! title ("Pendulum: energy error");
+%! printf ("max energy error in the first and the last tenth of [0, %g]:\n", tf);
+%! printf ("  odeSE %.2e %.2e\n", max (dE1(t1 <= tf/10)), max (dE1(t1 >= 0.9*tf)));
+%! printf ("  ode45 %.2e %.2e\n", max (dE2(t2 <= tf/10)), max (dE2(t2 >= 0.9*tf)));
+
+## Representative tests (the full ode45-contract tests are in
+## tests/test_ode45_contract.m).
+%!test
+%! ## fixed step: a row at every step, the last one on tf
+%! f = @(t, y) [y(2); -y(1)];
+%! [t, y] = odeSE (f, [0 1], [1 0], symplecticset ("TimeStepSize", 0.3));
+%! assert (t, [0; 0.3; 0.6; 0.9; 1], 1e-15);
+%! assert (size (y), [5, 2]);
+%! assert (y(end, :), [cos(1), -sin(1)], 0.2);
+
+%!test
+%! ## output times from the dense output; the steps stay those of [t0 tf]
+%! f = @(t, y) [y(2); -y(1)];
+%! o = symplecticset ("TimeStepSize", 0.01);
+%! [t, y] = odeSE (f, [0 0.123 0.5 1], [1; 0], o);
+%! assert (t, [0; 0.123; 0.5; 1]);
+%! assert (y, [cos(t), -sin(t)], 0.01);
+%! [t2, y2] = odeSE (f, [0 1], [1; 0], o);
+%! assert (y(end, :), y2(end, :), 1e-15);
+
+%!test
+%! ## a terminal event: the event row is the last one; sol has ode45's fields
+%! f = @(t, y) [y(2); -y(1)];
+%! o = symplecticset ("TimeStepSize", 0.001, "Events", @(t, y) deal (y(1), 1, -1));
+%! [t, y, te, ye, ie] = odeSE (f, [0 5], [1; 0], o);
+%! assert (te, pi/2, 2e-3);
+%! assert ([t(end), y(end, :)], [te, ye]);
+%! assert (ie, 1);
+%! sol = odeSE (f, [0 5], [1; 0], o);
+%! assert (all (isfield (sol, {"x", "y", "solver", "xe", "ye", "ie", "stats"})));
+%! assert (sol.solver, "odeSE");
+%! assert (size (sol.y), [2, numel(sol.x)]);

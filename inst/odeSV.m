@@ -68,3 +68,63 @@
 function varargout = odeSV (varargin)
   error ("odeSV: the compiled function odeSV.mex is missing; build the package with 'make'");
 endfunction
+
+%!demo
+%! ## Phase portrait of the double well H = p^2/2 + q^4/4 - q^2/2 with the
+%! ## explicit leapfrog (Separable): orbits in each well and around both.
+%! duffing = @(t, y) [y(2); y(1) - y(1)^3];
+%! opts = symplecticset ("TimeStepSize", 0.05, "Separable", "on");
+%! figure ();
+%! hold on;
+%! for q0 = [0.2, 0.6, 1.0, 1.3, 1.45, 1.6, 1.9]
+%!   for s = [-1, 1]
+%!     [t, y] = odeSV (duffing, [0 15], [s*q0; 0], opts);
+%!     plot (y(:,1), y(:,2), "b");
+%!   endfor
+%! endfor
+%! hold off;
+%! xlabel ("q");  ylabel ("p");
+%! title ("odeSV: phase portrait of the double well, h = 0.05");
+
+%!demo
+%! ## Energy error over 20 periods of Kepler's problem (eccentricity 0.3):
+%! ## Stormer-Verlet with a fixed step keeps it bounded (no drift); that of
+%! ## ode45 grows with time.
+%! kepler = @(t, y) [y(3:4); -y(1:2) / norm(y(1:2))^3];
+%! H = @(y) sum (y(:,3:4).^2, 2)/2 - 1 ./ sqrt (sum (y(:,1:2).^2, 2));
+%! e = 0.3;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];  tf = 40*pi;
+%! opts = symplecticset ("TimeStepSize", 2*pi/200, "Separable", "on");
+%! [t1, y1] = odeSV (kepler, [0 tf], y0, opts);
+%! [t2, y2] = ode45 (kepler, [0 tf], y0, odeset ("RelTol", 1e-4, "AbsTol", 1e-7));
+%! figure ();
+%! semilogy (t1 / (2*pi), max (abs (H (y1) + 0.5), eps), "b",
+%!           t2 / (2*pi), max (abs (H (y2) + 0.5), eps), "r");
+%! xlabel ("periods");  ylabel ("|H(t) - H(0)|");
+%! legend ("odeSV, h = 2\\pi/200", "ode45, RelTol = 1e-4", "location", "southeast");
+%! title ("Kepler, e = 0.3: energy error");
+
+## Representative tests (the full ode45-contract tests are in
+## tests/test_ode45_contract.m).
+%!test
+%! ## output times, Refine, and the sol struct
+%! f = @(t, y) [y(2); -y(1)];
+%! o = symplecticset ("TimeStepSize", 0.1);
+%! [t, y] = odeSV (f, [0 0.25 1 2], [1; 0], o);
+%! assert (t, [0; 0.25; 1; 2]);
+%! assert (y, [cos(t), -sin(t)], 2e-3);
+%! [t, y] = odeSV (f, [0 1], [1; 0], symplecticset (o, "Refine", 2));
+%! assert (t, (0:20)' * 0.05, 1e-14);
+%! sol = odeSV (f, [0 1], [1; 0], symplecticset (o, "Refine", 2));
+%! assert (sol.x, (0:10) * 0.1, 1e-14);
+%! assert (sol.solver, "odeSV");
+%! assert (sol.stats.nsteps, 10);
+
+%!test
+%! ## events with a direction; extra parameters reach fcn and Events
+%! f = @(t, y, w) [y(2); -w^2 * y(1)];
+%! ev = @(t, y, w) deal (y(2), 0, 1);     # p = -2 sin(2t) rises through 0
+%! o = symplecticset ("TimeStepSize", 0.001, "Events", ev);
+%! [t, y, te, ye, ie] = odeSV (f, [0 5], [1; 0], o, 2);
+%! assert (te, [pi/2; 3*pi/2], 1e-5);
+%! assert (ie, [1; 1]);
+%! assert (t(end), 5);

@@ -21,6 +21,9 @@ typedef struct {
   double *vold, *vnew, *vtry;
   int *term, *edir;
   double *ydense;
+  /* events found in one step, sorted by time (nevents each) */
+  double *tfound;
+  int *kfound;
   /* next requested output time index (ntout > 2) */
   int iout;
 } run_t;
@@ -124,9 +127,10 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
 {
   const sym_driver_opts *o = r->o;
   int ne = o->nevents;
-  /* found events: simple insertion into arrays sorted by time */
-  double tfound[64];
-  int kfound[64];
+  /* found events: insertion into arrays sorted by time (at most one per
+     event function, so ne entries suffice) */
+  double *tfound = r->tfound;
+  int *kfound = r->kfound;
   int nf = 0;
   for (int k = 0; k < ne; k++)
     {
@@ -136,18 +140,15 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
       int st = locate (r, k, t, r->vold[k], tnew, r->vnew[k], &te);
       if (st)
         return st;
-      if (nf < 64)
+      int j = nf++;
+      while (j > 0 && r->dir * (tfound[j - 1] - te) > 0)
         {
-          int j = nf++;
-          while (j > 0 && r->dir * (tfound[j - 1] - te) > 0)
-            {
-              tfound[j] = tfound[j - 1];
-              kfound[j] = kfound[j - 1];
-              j--;
-            }
-          tfound[j] = te;
-          kfound[j] = k;
+          tfound[j] = tfound[j - 1];
+          kfound[j] = kfound[j - 1];
+          j--;
         }
+      tfound[j] = te;
+      kfound[j] = k;
     }
   for (int j = 0; j < nf; j++)
     {
@@ -274,9 +275,9 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
     return st ? st : SYM_ENOMEM;
 
   int ne = o->nevents > 0 ? o->nevents : 0;
-  double *work = sym_calloc ((size_t) 6 * n + 3 * (size_t) ne + 1,
+  double *work = sym_calloc ((size_t) 6 * n + 4 * (size_t) ne + 1,
                              sizeof (double));
-  int *iwork = sym_calloc ((size_t) 2 * ne + 1, sizeof (int));
+  int *iwork = sym_calloc ((size_t) 3 * ne + 1, sizeof (int));
   if (! work || ! iwork)
     {
       sym_free (work);
@@ -290,8 +291,10 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
   r.vold = work + 6 * n;
   r.vnew = r.vold + ne;
   r.vtry = r.vnew + ne;
+  r.tfound = r.vtry + ne;
   r.term = iwork;
   r.edir = iwork + ne;
+  r.kfound = iwork + 2 * ne;
   memcpy (y, y0, (size_t) n * sizeof (double));
 
   double t = o->t0;

@@ -1,0 +1,578 @@
+## The ode45 contract of odeSE, odeSV and odeSPVI: output times and dense
+## output, events, OutputFcn/OutputSel/odeplot, Refine, the sol struct and
+## Stats, Vectorized, options (case, odepkg scripts, plain structs), extra
+## parameters, backward runs, row y0, function names, tspan with more than
+## two elements; the help texts, the demos and INDEX.
+## References are exact: Kepler's problem through Kepler's equation (solved
+## by Newton), the harmonic oscillator through cos and sin.
+
+%!function Y = kepler_exact (t, e)
+%!  ## a = 1, period 2*pi, periapsis at t = 0 on the q1 axis:
+%!  ## y(0) = [1-e; 0; 0; sqrt((1+e)/(1-e))]; rows of [q1 q2 p1 p2]
+%!  t = t(:);  E = t;
+%!  for it = 1:60
+%!    dE = (E - e * sin (E) - t) ./ (1 - e * cos (E));
+%!    E -= dE;
+%!    if (max (abs (dE)) < 1e-15)
+%!      break;
+%!    endif
+%!  endfor
+%!  den = 1 - e * cos (E);  b = sqrt (1 - e^2);
+%!  Y = [cos(E) - e, b * sin(E), -sin(E) ./ den, b * cos(E) ./ den];
+%!endfunction
+
+%!function dy = kepler (t, y)
+%!  ## accepts a 4-by-k matrix of states (Vectorized)
+%!  q = y(1:2, :);
+%!  r = sqrt (sum (q.^2, 1));
+%!  dy = [y(3:4, :); -q ./ r.^3];
+%!endfunction
+
+%!function dy = kepler_counted (t, y)
+%!  global CONTRACT_CALLS
+%!  CONTRACT_CALLS(end+1) = columns (y);
+%!  q = y(1:2, :);
+%!  r = sqrt (sum (q.^2, 1));
+%!  dy = [y(3:4, :); -q ./ r.^3];
+%!endfunction
+
+%!function dy = contract_osc (t, y)
+%!  dy = [y(2); -y(1)];
+%!endfunction
+
+%!function [v, term, dir] = ev_q (t, y)
+%!  v = y(1);  term = 0;  dir = 0;
+%!endfunction
+
+%!function [v, term, dir] = ev_q_terminal (t, y)
+%!  v = y(1);  term = 1;  dir = 0;
+%!endfunction
+
+%!function [v, term, dir] = ev_q_p (t, y)
+%!  ## 1: q falling through 0; 2: p rising through 0; neither terminal
+%!  v = [y(1); y(2)];  term = [0; 0];  dir = [-1; 1];
+%!endfunction
+
+%!function stop = recorder (t, y, flag, varargin)
+%!  ## logs every call; stops on a row with t >= CONTRACT_TSTOP
+%!  global CONTRACT_LOG CONTRACT_TSTOP
+%!  CONTRACT_LOG(end+1, :) = {t, y, flag, varargin};
+%!  stop = isempty (flag) && ! isempty (CONTRACT_TSTOP) && t >= CONTRACT_TSTOP;
+%!endfunction
+
+## Extra parameters: w (frequency) and s (a tag that must arrive).
+%!function dy = osc_par (t, y, w, s)
+%!  assert (nargin == 4 && strcmp (s, "tag"));
+%!  dy = [y(2); -w^2 * y(1)];
+%!endfunction
+
+%!function H = osc_par_hess (t, y, w, s)
+%!  assert (nargin == 4 && strcmp (s, "tag"));
+%!  H = [w^2, 0; 0, 1];
+%!endfunction
+
+%!function [v, term, dir] = osc_par_ev (t, y, w, s)
+%!  assert (nargin == 4 && strcmp (s, "tag"));
+%!  v = y(1);  term = 0;  dir = 0;
+%!endfunction
+
+%!shared solvers
+%! solvers = {@odeSE, @odeSV, @odeSPVI};
+
+## ------------------------------------------------------------ dense output
+%!test
+%! ## odeSPVI (Q_DoFs 4, Nodes 3), h = 2*pi/100 on Kepler (e = 0.6) over 10
+%! ## periods: rows at 1000 times that are not step points (each 0.37 h
+%! ## after one) are as accurate as the step points.
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];  h = 2*pi/100;  tf = 20*pi;
+%! o = symplecticset ("TimeStepSize", h, "Q_DoFs", 4, "Nodes", 3);
+%! [ts, ys] = odeSPVI (@kepler, [0 tf], y0, o);
+%! assert (numel (ts), 1001);
+%! err_step = max (max (abs (ys - kepler_exact (ts, e))));
+%! tt = ((0:999) + 0.37) * h;
+%! frac = tt / h - floor (tt / h);
+%! assert (min (min (frac, 1 - frac)) > 0.3);   # far from step points
+%! [t, y] = odeSPVI (@kepler, [0 tt tf], y0, o);
+%! assert (t(2:end-1), tt(:));
+%! err_dense = max (max (abs (y(2:end-1, :) - kepler_exact (tt, e))));
+%! assert (err_step < 2e-4 && err_step > 0);
+%! assert (err_dense <= 10 * err_step, "dense %.3g step %.3g", err_dense, err_step);
+%! ## the last row is the step point at tf itself
+%! assert (y(end, :), ys(end, :), 1e-14);
+
+%!test
+%! ## odeSE and odeSV: the dense output has the method's order (error at
+%! ## 100 output times off the step grid: /2 resp. /4 when h halves)
+%! e = 0.2;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];  tf = pi;
+%! tt = ((0:99) + 0.37) * tf / 100;
+%! cases = {@odeSE, tf ./ [200 400 800], 1; @odeSV, tf ./ [25 50 100], 2};
+%! for i = 1:2
+%!   hs = cases{i, 2};  err = zeros (size (hs));
+%!   for j = 1:numel (hs)
+%!     o = symplecticset ("TimeStepSize", hs(j), "Separable", "on");
+%!     [t, y] = cases{i, 1} (@kepler, [0 tt tf], y0, o);
+%!     err(j) = max (max (abs (y(2:end-1, :) - kepler_exact (tt, e))));
+%!   endfor
+%!   s = log2 (err(1:end-1) ./ err(2:end));
+%!   assert (all (abs (s - cases{i, 3}) <= 0.15), "%s slopes %s",
+%!           func2str (cases{i, 1}), mat2str (s, 3));
+%! endfor
+
+## ------------------------------------------------------------ events
+%!test
+%! ## harmonic oscillator, q = 0 at pi/2 + k pi: odeSPVI to 1e-10
+%! f = @(t, y) [y(2); -y(1)];
+%! texact = pi/2 + (0:2)' * pi;
+%! runs = {symplecticset("TimeStepSize", 0.02), ...
+%!         symplecticset("RelTol", 1e-14, "AbsTol", 1e-14)};
+%! for i = 1:2
+%!   o = symplecticset (runs{i}, "Events", @ev_q);
+%!   [t, y, te, ye, ie] = odeSPVI (f, [0 10], [1; 0], o);
+%!   assert (numel (te), 3);
+%!   assert (te, texact, 1e-10);
+%!   assert (abs (ye(:, 1)) < 1e-14);
+%!   assert (ye(:, 2), -sin (texact), 1e-8);
+%!   assert (ie, ones (3, 1));
+%!   assert (t(end), 10);          # non-terminal: the run goes on
+%! endfor
+
+%!test
+%! ## odeSE / odeSV with a fixed step h: event times within h resp. h^2
+%! ## (their global errors; measured 0.50 h and 0.33 h^2)
+%! f = @(t, y) [y(2); -y(1)];
+%! texact = pi/2 + (0:2)' * pi;
+%! h = 0.01;
+%! for k = 1:2
+%!   solver = {@odeSE, @odeSV}{k};
+%!   o = symplecticset ("TimeStepSize", h, "Events", @ev_q);
+%!   [t, y, te, ye, ie] = solver (f, [0 10], [1; 0], o);
+%!   assert (numel (te), 3);
+%!   assert (te, texact, h^k);
+%!   assert (abs (ye(:, 1)) < 1e-14);    # located on the dense output
+%! endfor
+
+%!test
+%! ## a terminal event ends the run there: last row = event row
+%! f = @(t, y) [y(2); -y(1)];
+%! h = 0.1;
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", h, "Events", @ev_q_terminal);
+%!   [t, y, te, ye, ie] = solvers{i} (f, [0 10], [1; 0], o);
+%!   assert (te, pi/2, h);
+%!   assert (t(end), te);
+%!   assert (y(end, :), ye);
+%!   assert (abs (ye(1)) < 1e-14);
+%!   assert (ie, 1);
+%!   grid = (0:100)' * h;
+%!   assert (t(1:end-1), grid(grid < te), 1e-13);   # the steps before te
+%!   ## with Refine and with output times
+%!   [t, y, te] = solvers{i} (f, [0 10], [1; 0], symplecticset (o, "Refine", 3));
+%!   assert (t(end), te);
+%!   grid = (0:300)' * h / 3;
+%!   assert (t(1:end-1), grid(grid < te), 1e-13);
+%!   [t, y, te] = solvers{i} (f, [0 1 2 3], [1; 0], o);
+%!   assert (t, [0; 1; te]);
+%!   ## sol output
+%!   sol = solvers{i} (f, [0 10], [1; 0], o);
+%!   assert (sol.xe, te);
+%!   assert (sol.x(end), te);
+%!   assert (sol.ye, y(end, :));
+%!   assert (sol.ie, 1);
+%! endfor
+
+%!test
+%! ## direction filtering and event indices; backward as well
+%! f = @(t, y) [y(2); -y(1)];
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", 0.01, "Events", @ev_q_p);
+%!   [t, y, te, ye, ie] = solvers{i} (f, [0 10], [1; 0], o);
+%!   ## q falls through 0 at pi/2, 5pi/2; p = -sin t rises through 0 at pi, 3pi
+%!   assert (ie, [1; 2; 1; 2]);
+%!   assert (te, [pi/2; pi; 5*pi/2; 3*pi], 1e-2);
+%!   sol = solvers{i} (f, [0 10], [1; 0], o);
+%!   assert (sol.xe, te);
+%!   assert (sol.ye, ye);
+%!   assert (sol.ie, ie);
+%!   ## backwards from 0 to -10 (directions as t runs backwards): q falls
+%!   ## through 0 at -pi/2 and -5pi/2, p rises at -2pi
+%!   [t, y, te, ye, ie] = solvers{i} (f, [0 -10], [1; 0], o);
+%!   assert (ie, [1; 2; 1]);
+%!   assert (te, [-pi/2; -2*pi; -5*pi/2], 1e-2);
+%! endfor
+
+%!test
+%! ## many event functions crossing in one step are all found, in time
+%! ## order, up to the terminal one (the last to cross)
+%! f = @(t, y) [y(2); -y(1)];
+%! c = linspace (0.99, 0.9, 100)';
+%! term = [zeros(99, 1); 1];
+%! ev = @(t, y) deal (y(1) - c, term, zeros (100, 1));
+%! o = symplecticset ("TimeStepSize", 0.5, "Events", ev);
+%! [t, y, te, ye, ie] = odeSPVI (f, [0 10], [1; 0], o);
+%! assert (ie, (1:100)');
+%! assert (te, acos (c), 1e-3);
+%! assert (t(end), te(end));
+%! assert (numel (t), 2);
+
+## ------------------------------------------------------------ OutputFcn
+%!test
+%! ## init (tspan, y0), every returned row with flag "", then done
+%! global CONTRACT_LOG CONTRACT_TSTOP
+%! f = @(t, y) [y(2); -y(1)];
+%! for i = 1:3
+%!   for tspan = {[0 1], [0 0.25 0.5 1]}
+%!     CONTRACT_LOG = cell (0, 4);  CONTRACT_TSTOP = [];
+%!     o = symplecticset ("TimeStepSize", 0.1, "OutputFcn", @recorder);
+%!     [t, y] = solvers{i} (f, tspan{1}, [1; 0], o);
+%!     L = CONTRACT_LOG;
+%!     assert (L{1, 3}, "init");
+%!     assert (L{1, 1}(:), tspan{1}(:));
+%!     assert (L{1, 2}, [1; 0]);
+%!     assert (L{end, 3}, "done");
+%!     assert (isempty (L{end, 1}) && isempty (L{end, 2}));
+%!     rows = L(2:end-1, :);
+%!     assert (all (cellfun (@(s) ischar (s) && isempty (s), rows(:, 3))));
+%!     assert ([rows{:, 1}]', t(2:end));
+%!     assert ([rows{:, 2}]', y(2:end, :));
+%!   endfor
+%! endfor
+
+%!test
+%! ## a true return value stops the run; the rows so far are returned
+%! global CONTRACT_LOG CONTRACT_TSTOP
+%! f = @(t, y) [y(2); -y(1)];
+%! for i = 1:3
+%!   CONTRACT_LOG = cell (0, 4);  CONTRACT_TSTOP = 0.45;
+%!   o = symplecticset ("TimeStepSize", 0.1, "OutputFcn", @recorder);
+%!   lastwarn ("");
+%!   evalc ("[t, y] = solvers{i} (f, [0 1], [1; 0], o);");
+%!   [~, id] = lastwarn ();
+%!   assert (id, "symplectic:output-stop");
+%!   assert (t, (0:0.1:0.5)', 1e-15);
+%!   rows = CONTRACT_LOG(2:end-1, :);
+%!   assert ([rows{:, 1}]', t(2:end));
+%!   assert ([rows{:, 2}]', y(2:end, :));
+%!   assert (CONTRACT_LOG{end, 3}, "done");
+%!   ## the same with Refine: stops at a refined row
+%!   CONTRACT_LOG = cell (0, 4);  CONTRACT_TSTOP = 0.42;
+%!   evalc ("[t, y] = solvers{i} (f, [0 1], [1; 0], symplecticset (o, 'Refine', 4));");
+%!   assert (t, (0:17)' * 0.025, 1e-15);
+%!   rows = CONTRACT_LOG(2:end-1, :);
+%!   assert ([rows{:, 1}]', t(2:end));
+%! endfor
+%! CONTRACT_TSTOP = [];
+
+%!test
+%! ## OutputSel: only the selected components; extra parameters arrive
+%! global CONTRACT_LOG CONTRACT_TSTOP
+%! CONTRACT_TSTOP = [];
+%! for i = 1:3
+%!   CONTRACT_LOG = cell (0, 4);
+%!   o = symplecticset ("TimeStepSize", 0.1, "OutputFcn", @recorder, "OutputSel", 2);
+%!   [t, y] = solvers{i} (@osc_par, [0 1], [1; 0], o, 2, "tag");
+%!   assert (CONTRACT_LOG{1, 2}, 0);
+%!   rows = CONTRACT_LOG(2:end-1, :);
+%!   assert ([rows{:, 2}]', y(2:end, 2));
+%!   assert (all (cellfun (@(c) isequal (c, {2, "tag"}), CONTRACT_LOG(:, 4))));
+%!   CONTRACT_LOG = cell (0, 4);
+%!   o = symplecticset (o, "OutputSel", [2 1]);
+%!   [t, y] = solvers{i} (@osc_par, [0 1], [1; 0], o, 2, "tag");
+%!   rows = CONTRACT_LOG(2:end-1, :);
+%!   assert ([rows{:, 2}]', y(2:end, [2 1]));
+%! endfor
+
+%!test
+%! ## odeplot as OutputFcn (off-screen), and no output argument: a plot
+%! old = get (0, "defaultfigurevisible");
+%! set (0, "defaultfigurevisible", "off");
+%! warning ("off", "Octave:gnuplot-graphics", "local");
+%! unwind_protect
+%!   f = @(t, y) [y(2); -y(1)];
+%!   o = symplecticset ("TimeStepSize", 0.1, "OutputFcn", @odeplot);
+%!   for i = 1:3
+%!     hf = figure ();
+%!     [t, y] = solvers{i} (f, [0 2], [1; 0], o);
+%!     hl = get (gca (), "children");
+%!     assert (numel (hl), 2);
+%!     for k = 1:2
+%!       assert (get (hl(k), "xdata")(:), t);
+%!     endfor
+%!     assert (sort ([get(hl(1), "ydata")(end), get(hl(2), "ydata")(end)]),
+%!             sort (y(end, :)));
+%!     close all;
+%!     solvers{i} (f, [0 2], [1; 0], symplecticset ("TimeStepSize", 0.1));
+%!     assert (! isempty (get (0, "currentfigure")));
+%!     close all;
+%!   endfor
+%! unwind_protect_cleanup
+%!   close all;
+%!   set (0, "defaultfigurevisible", old);
+%! end_unwind_protect
+
+## ------------------------------------------------------------ Refine
+%!test
+%! ## default 1 (step points); Refine = 4: 4 rows per step from the dense
+%! ## output; ignored with more than two tspan elements and for sol
+%! f = @(t, y) [y(2); -y(1)];
+%! tol = [0.06, 5e-3, 1e-7];     # the methods' accuracy at h = 0.1
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", 0.1);
+%!   [t, y] = solvers{i} (f, [0 10], [1; 0], o);
+%!   assert (t, (0:100)' * 0.1, 1e-13);
+%!   o.Refine = 4;
+%!   [t, y] = solvers{i} (f, [0 10], [1; 0], o);
+%!   assert (numel (t), 401);
+%!   assert (t, (0:400)' * 0.025, 1e-13);
+%!   assert (y, [cos(t), -sin(t)], tol(i));
+%!   ## rows at step points are the same as without Refine
+%!   [t1, y1] = solvers{i} (f, [0 10], [1; 0], symplecticset (o, "Refine", 1));
+%!   assert (y(1:4:end, :), y1, 1e-14);
+%!   [t, y] = solvers{i} (f, [0 1 2.5 10], [1; 0], o);
+%!   assert (t, [0; 1; 2.5; 10]);
+%!   sol = solvers{i} (f, [0 10], [1; 0], o);
+%!   assert (numel (sol.x), 101);
+%!   ## adaptive
+%!   oa = symplecticset ("RelTol", 1e-6, "Refine", 4);
+%!   sa = solvers{i} (f, [0 10], [1; 0], oa);
+%!   [t, y] = solvers{i} (f, [0 10], [1; 0], oa);
+%!   assert (numel (t), 4 * sa.stats.nsteps + 1);
+%!   assert (t(1:4:end), sa.x(:));
+%! endfor
+
+## ------------------------------------------------------------ sol and Stats
+%!test
+%! f = @(t, y) [y(2); -y(1)];
+%! fields = {"nsteps", "nfailed", "nfevals", "npds", "ndecomps", "nlinsols"};
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", 0.1, "Events", @ev_q);
+%!   sol = solvers{i} (f, [0 2], [1 0], o);
+%!   [t, y] = solvers{i} (f, [0 2], [1 0], o);
+%!   assert (size (sol.x), [1, 21]);
+%!   assert (sol.x, t.');
+%!   assert (sol.y, y.');
+%!   assert (sol.solver, func2str (solvers{i}));
+%!   assert (all (isfield (sol, {"xe", "ye", "ie", "stats"})));
+%!   assert (all (isfield (sol.stats, fields)));
+%!   assert (sol.stats.nsteps, 20);
+%!   assert (sol.stats.nfailed, 0);
+%!   assert (sol.stats.nfevals > 20);
+%!   assert (size (sol.ye), [1, 2]);
+%!   if (i == 3)
+%!     assert ([sol.order, sol.Q_DoFs, sol.Nodes], [6, 4, 3]);
+%!   else
+%!     assert (! isfield (sol, "order"));
+%!   endif
+%!   ## without Events: no xe, ye, ie
+%!   sol = solvers{i} (f, [0 2], [1 0], symplecticset ("TimeStepSize", 0.1));
+%!   assert (! any (isfield (sol, {"xe", "ye", "ie"})));
+%! endfor
+%! sol = odeSPVI (f, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "Nodes", 2));
+%! assert ([sol.order, sol.Q_DoFs, sol.Nodes], [4, 3, 2]);
+
+%!test
+%! ## Stats = "on": ode45's three lines, then Newton and Jacobian counts
+%! f = @(t, y) [y(2); -sin(y(1))];
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", 0.1, "Stats", "on");
+%!   txt = evalc ("sol = solvers{i} (f, [0 2], [1; 0], o);");
+%!   s = sol.stats;
+%!   lines = strsplit (strtrim (txt), "\n");
+%!   assert (lines{1}, sprintf ("Number of successful steps: %d", s.nsteps));
+%!   assert (lines{2}, sprintf ("Number of failed attempts:  %d", s.nfailed));
+%!   assert (lines{3}, sprintf ("Number of function calls:   %d", s.nfevals));
+%!   assert (! isempty (strfind (txt, sprintf ("Newton iterations: %d", s.nnewton))));
+%!   assert (! isempty (regexp (txt, "Jacobian/Hessian evaluations: \\d+ \\(source: finite differences")));
+%!   assert (! isempty (strfind (txt, sprintf ("LU decompositions: %d", s.ndecomps))));
+%!   assert (s.nnewton > 0 && s.ndecomps > 0);
+%!   txt = evalc ("[t, y] = solvers{i} (f, [0 2], [1; 0], symplecticset (o, 'Stats', 'off'));");
+%!   assert (isempty (txt));
+%! endfor
+
+## ------------------------------------------------------------ Vectorized
+%!test
+%! ## odeSPVI: the same trajectory with fewer calls of fcn
+%! global CONTRACT_CALLS
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! o = symplecticset ("TimeStepSize", 2*pi/100);
+%! CONTRACT_CALLS = [];
+%! s0 = odeSPVI (@kepler_counted, [0 4*pi], y0, symplecticset (o, "Vectorized", "off"));
+%! c0 = CONTRACT_CALLS;
+%! CONTRACT_CALLS = [];
+%! s1 = odeSPVI (@kepler_counted, [0 4*pi], y0, symplecticset (o, "Vectorized", "on"));
+%! c1 = CONTRACT_CALLS;
+%! assert (s1.y, s0.y, 1e-12);
+%! assert (all (c0 == 1));
+%! assert (any (c1 == 3));                  # all nodes in one call
+%! assert (numel (c0), s0.stats.nfevals);
+%! assert (numel (c1), s1.stats.nfevals);
+%! assert (s1.stats.nfevals < 0.6 * s0.stats.nfevals);
+%! assert (s1.stats.nstates, s0.stats.nstates);
+%! ## adaptive: the same solution up to the round-off in the step size
+%! ## control (fcn's values differ in the last bit between the two forms)
+%! tt = linspace (0, 4*pi, 50);
+%! oa = odeset ("RelTol", 1e-8, "AbsTol", 1e-10);
+%! CONTRACT_CALLS = [];
+%! [~, y0v] = odeSPVI (@kepler_counted, tt, y0, symplecticset (oa, "Vectorized", "off"));
+%! n0 = numel (CONTRACT_CALLS);
+%! CONTRACT_CALLS = [];
+%! [~, y1v] = odeSPVI (@kepler_counted, tt, y0, symplecticset (oa, "Vectorized", "on"));
+%! n1 = numel (CONTRACT_CALLS);
+%! assert (y1v, y0v, 1e-6);
+%! assert (n1 < 0.6 * n0);
+
+## ------------------------------------------------------------ options
+%!test
+%! ## odepkg-style scripts: odeset with the package's names (odeset warns)
+%! warning ("off", "Octave:invalid-input-arg", "local");
+%! f = @(t, y) [y(2); -y(1)];
+%! o = odeset ("TimeStepSize", 0.1, "Q_DoFs", 3, "P_DoFs", 2);
+%! sol = odeSPVI (f, [0 1], [1; 0], o);
+%! assert ([sol.stats.nsteps, sol.Q_DoFs, sol.Nodes, sol.order], [10 3 2 4]);
+%! o = odeset ("TimeStepSize", 0.1, "PolynomialDegree", 2);
+%! sol = odeSPVI (f, [0 1], [1; 0], o);
+%! assert ([sol.Q_DoFs, sol.Nodes], [3 3]);
+%! o = odeset ("TimeStepSize", 0.1);
+%! for i = 1:2
+%!   sol = solvers{i} (f, [0 1], [1; 0], o);
+%!   assert (sol.stats.nsteps, 10);
+%! endfor
+
+%!test
+%! ## names in any case; plain structs; symplecticset does not warn
+%! f = @(t, y) [y(2); -y(1)];
+%! ref = odeSPVI (f, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "Q_DoFs", 3, "Nodes", 2));
+%! lastwarn ("");
+%! o1 = symplecticset ("timestepsize", 0.1, "q_dofs", 3, "NODES", 2);
+%! assert (lastwarn (), "");
+%! assert (isfield (o1, "TimeStepSize") && isfield (o1, "Q_DoFs"));
+%! o2 = struct ("timeStepSize", 0.1, "q_dofs", 3, "nodes", 2);
+%! o3 = struct ("TIMESTEPSIZE", 0.1, "Q_DOFS", 3, "p_dofs", 2, "EVENTS", []);
+%! for o = {o1, o2, o3}
+%!   sol = odeSPVI (f, [0 1], [1; 0], o{1});
+%!   assert ([sol.Q_DoFs, sol.Nodes], [3 2]);
+%!   assert (sol.y, ref.y, 1e-15);
+%! endfor
+%! ## standard fields in any case, in a plain struct
+%! sol = odeSV (f, [0 1], [1; 0], struct ("reltol", 1e-8, "ABSTOL", 1e-10, "stats", "off"));
+%! assert (sol.y(:, end), [cos(1); -sin(1)], 1e-5);
+%! sol1 = odeSV (f, [0 1], [1; 0], odeset ("RelTol", 1e-3));
+%! assert (sol.stats.nsteps > 2 * sol1.stats.nsteps);
+
+## ------------------------------------------------------------ arguments
+%!test
+%! ## extra parameters reach fcn, Events and HamiltonianHessFcn
+%! w = 2;
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", 0.01, "Events", @osc_par_ev,
+%!                      "HamiltonianHessFcn", @osc_par_hess);
+%!   [t, y, te] = solvers{i} (@osc_par, [0 3], [1; 0], o, w, "tag");
+%!   assert (y(end, :), [cos(w*3), -w*sin(w*3)], 0.1);
+%!   assert (te, [pi/4; 3*pi/4], 0.01);
+%!   sol = solvers{i} (@osc_par, [0 3], [1; 0], o, w, "tag");
+%!   assert (sol.stats.jacobian_source, "HamiltonianHessFcn");
+%!   assert (sol.stats.npds > 0);
+%! endfor
+
+%!test
+%! ## backward runs, row y0, a function name as a string
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", 0.01);
+%!   [t, y] = solvers{i} ("contract_osc", [1 -2], [cos(1); -sin(1)], o);
+%!   [t2, y2] = solvers{i} (@contract_osc, [1 -2], [cos(1), -sin(1)], o);
+%!   assert (t, t2);
+%!   assert (y, y2);
+%!   assert (t, 1 - (0:300)' * 0.01, 1e-13);
+%!   assert (y(end, :), [cos(-2), -sin(-2)], 0.02);
+%!   ## adaptive backwards
+%!   [t, y] = solvers{i} ("contract_osc", [0 -3], [1 0], odeset ("RelTol", 1e-6));
+%!   assert (t(end), -3);
+%!   assert (all (diff (t) < 0));
+%!   assert (y(end, :), [cos(-3), -sin(-3)], 0.05);
+%! endfor
+
+%!test
+%! ## tspan with more than two elements: rows exactly there, steps unchanged
+%! f = @(t, y) [y(2); -y(1)];
+%! ts = [0, 0.05, 1/3, 1, pi, 9.99, 10];
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", 0.1);
+%!   s2 = solvers{i} (f, [0 10], [1; 0], o);
+%!   [t, y] = solvers{i} (f, ts, [1; 0], o);
+%!   assert (t, ts(:));
+%!   assert (y(end, :), s2.y(:, end).', 1e-14);
+%!   o.OutputFcn = @(t, y, flag) false;
+%!   o.Stats = "on";
+%!   txt = evalc ("[t, y] = solvers{i} (f, ts, [1; 0], o);");
+%!   assert (! isempty (strfind (txt, "successful steps: 100")));
+%!   ## backward, and a column tspan
+%!   [t, y] = solvers{i} (f, -ts(:), [1; 0], symplecticset ("TimeStepSize", 0.1));
+%!   assert (t, -ts(:));
+%!   assert (y(:, 1), cos (t), 0.06);
+%! endfor
+
+## ------------------------------------------------------------ help, demos
+%!test
+%! ## the help texts render without texinfo errors and say the key things
+%! keys = {"TimeStepSize", "RelTol", "Events", "OutputFcn", "OutputSel", ...
+%!         "Refine", "Stats", "SOL", "Jacobian", "HamiltonianHessFcn"};
+%! for name = {"odeSE", "odeSV", "odeSPVI", "symplecticset"}
+%!   [txt, fmt] = get_help_text (name{1});
+%!   assert (fmt, "texinfo");
+%!   [out, status] = __makeinfo__ (txt, "plain text");
+%!   assert (status, 0);
+%!   assert (isempty (strfind (out, "warning:")));
+%!   assert (isempty (regexp (out, '@(code|var|item|end|example)\>', "once")));
+%!   if (! strcmp (name{1}, "symplecticset"))
+%!     ## help shows the m-file's text for the MEX function
+%!     assert (! isempty (strfind (evalc (["help " name{1}]), "OutputFcn")));
+%!     for k = keys
+%!       assert (! isempty (strfind (out, k{1})), "%s: %s", name{1}, k{1});
+%!     endfor
+%!   endif
+%! endfor
+%! out = __makeinfo__ (get_help_text ("odeSE"), "plain text");
+%! assert (! isempty (regexp (out, "Refine'?\\s+\\(default 1: step points only")));
+%! assert (! isempty (strfind (out, "odeplot")));
+%! assert (! isempty (strfind (out, "Vectorized")));
+%! out = __makeinfo__ (get_help_text ("odeSPVI"), "plain text");
+%! assert (! isempty (regexp (out, "Refine'?\\s+defaults to 1 \\(step points only")));
+%! assert (! isempty (strfind (out, "Vectorized")));
+
+%!test
+%! ## every demo runs off-screen without error; at least two per solver
+%! old = get (0, "defaultfigurevisible");
+%! set (0, "defaultfigurevisible", "off");
+%! warning ("off", "Octave:gnuplot-graphics", "local");
+%! unwind_protect
+%!   for name = {"odeSE", "odeSV", "odeSPVI"}
+%!     [code, idx] = test (file_in_loadpath ([name{1} ".m"]), "grabdemo");
+%!     assert (numel (idx) - 1 >= 2, "%s has %d demos", name{1}, numel (idx) - 1);
+%!     for k = 1:numel (idx) - 1
+%!       block = code(idx(k):idx(k+1)-1);
+%!       eval (["function __contract_demo__ ()\n" block "\nendfunction"]);
+%!       evalc ("__contract_demo__ ();");
+%!       clear __contract_demo__;
+%!       assert (! isempty (get (0, "currentfigure")), "%s demo %d plots", name{1}, k);
+%!       close all;
+%!     endfor
+%!   endfor
+%! unwind_protect_cleanup
+%!   close all;
+%!   set (0, "defaultfigurevisible", old);
+%! end_unwind_protect
+
+%!test
+%! ## INDEX lists every function of the package
+%! inst = fileparts (file_in_loadpath ("odeSPVI.m"));
+%! cand = {fullfile(fileparts (inst), "INDEX"), fullfile(inst, "packinfo", "INDEX")};
+%! cand = cand(cellfun (@(f) exist (f, "file") == 2, cand));
+%! assert (! isempty (cand), "no INDEX found near %s", inst);
+%! txt = fileread (cand{1});
+%! assert (! isempty (regexp (txt, "^symplectic >> ", "once")));
+%! listed = regexp (txt, '^ +(\w+)', "tokens", "lineanchors");
+%! listed = sort ([listed{:}]);
+%! m = dir (fullfile (inst, "*.m"));
+%! assert (listed, sort (regexprep ({m.name}, '\.m$', "")));
+
+%!test
+%! clear -global CONTRACT_CALLS CONTRACT_LOG CONTRACT_TSTOP
