@@ -1,0 +1,156 @@
+## Tests of odeSPVI through the Octave interface: measured orders against
+## the exact pendulum, symplecticity, Kepler's invariants over many periods,
+## the four sources of Newton's matrix, adaptive control, bad pairs.
+
+%!function y = pendulum_exact (t, y0)
+%!  ## H = p^2/2 - cos q, libration: sin(q/2) = k sn(u), p = 2 k cn(u),
+%!  ## u = u0 + t, k = sin(qmax/2), with Jacobi's elliptic functions
+%!  E = y0(2)^2/2 - cos (y0(1));
+%!  k = sin (acos (-E) / 2);
+%!  s0 = sin (y0(1)/2) / k;
+%!  u0 = asin (s0);                # then Newton on sn(u0) = s0 (sn' = cn dn)
+%!  for it = 1:50
+%!    [sn, cn, dn] = ellipj (u0, k^2);
+%!    du = (sn - s0) / (cn * dn);
+%!    u0 -= du;
+%!    if (abs (du) < 1e-17)
+%!      break;
+%!    endif
+%!  endfor
+%!  if (y0(2) < 0)
+%!    error ("pendulum_exact: p0 >= 0 assumed");
+%!  endif
+%!  [sn, cn] = ellipj (u0 + t(:), k^2);
+%!  y = [2 * asin(k * sn), 2 * k * cn];
+%!endfunction
+
+%!function dy = pendulum (t, y)
+%!  dy = [y(2); -sin(y(1))];
+%!endfunction
+
+%!function [dy, ddy] = kepler (t, y)
+%!  q = y(1:2);  r = norm (q);
+%!  dy = [y(3:4); -q / r^3];
+%!  if (nargout > 1)
+%!    ddy = blkdiag ((eye (2) - 3 * (q * q.') / r^2) / r^3, eye (2));
+%!  endif
+%!endfunction
+
+%!function H = kepler_hess (t, y)
+%!  [~, H] = kepler (t, y);
+%!endfunction
+
+%!function Df = kepler_jac (t, y)
+%!  [~, H] = kepler (t, y);
+%!  Df = [H(3:4, :); -H(1:2, :)];
+%!endfunction
+
+%!function dy = kepler1 (t, y)
+%!  dy = kepler (t, y);
+%!endfunction
+
+## ----------------------------------------------------------------- orders
+%!test
+%! ## slopes on the pendulum, y0 = [1; 1], t in [0, 10], against the exact
+%! ## solution: order 2*min(n-1, 2m-n+1)
+%! y0 = [1; 1];
+%! yex = pendulum_exact (10, y0);
+%! ## the reference itself: a conserved energy check
+%! assert (yex(2)^2/2 - cos (yex(1)), y0(2)^2/2 - cos (y0(1)), 1e-14);
+%! hs = 0.5 ./ 2.^(0:3);
+%! pairs = [2 1; 3 2; 4 3; 3 3; 4 2; 5 4];
+%! for i = 1:rows (pairs)
+%!   n = pairs(i, 1);  m = pairs(i, 2);
+%!   p = 2 * min (n-1, 2*m-n+1);
+%!   err = zeros (size (hs));
+%!   for k = 1:numel (hs)
+%!     o = symplecticset ("TimeStepSize", hs(k), "Q_DoFs", n, "Nodes", m);
+%!     [~, y] = odeSPVI (@pendulum, [0 10], y0, o);
+%!     err(k) = norm (y(end, :) - yex, Inf);
+%!   endfor
+%!   s = log2 (err(1:end-1) ./ err(2:end));
+%!   ok = err(2:end) > 1e-12;          # slopes above round-off
+%!   s = s(ok);
+%!   assert (! isempty (s));
+%!   assert (abs (s(end) - p) <= 0.15, "(%d,%d): slopes %s", n, m, mat2str (s, 3));
+%!   assert (all (abs (s - p) <= 0.3), "(%d,%d): slopes %s", n, m, mat2str (s, 3));
+%! endfor
+
+%!test
+%! ## (2,1) is the implicit midpoint rule: compare with an independent one
+%! h = 0.1;  y = [1; 1];  f = @(y) [y(2); -sin(y(1))];
+%! o = symplecticset ("TimeStepSize", h, "Q_DoFs", 2, "Nodes", 1);
+%! [~, ys] = odeSPVI (@pendulum, [0 20*h], y, o);
+%! for k = 1:20
+%!   z = y;
+%!   for it = 1:100
+%!     z = y + h * f ((y + z) / 2);
+%!   endfor
+%!   assert (ys(k+1, :).', z, 1e-13 * k);
+%!   y = z;
+%! endfor
+
+## ----------------------------------------------------------------- geometry
+%!test
+%! ## symplecticity of the one-step map on a non-separable H
+%! f = @(t, y) [y(2) * (1 + y(1)^2); -(y(2)^2 * y(1) + y(1))];
+%! J = [0 1; -1 0];  y0 = [0.3; -0.7];  h = 0.3;  del = 1e-5;
+%! for nm = [2 1; 4 3; 3 3].'
+%!   o = symplecticset ("TimeStepSize", h, "Q_DoFs", nm(1), "Nodes", nm(2));
+%!   M = zeros (2);
+%!   for j = 1:2
+%!     e = zeros (2, 1);  e(j) = del;
+%!     [~, yp] = odeSPVI (f, [0 h], y0 + e, o);
+%!     [~, ym] = odeSPVI (f, [0 h], y0 - e, o);
+%!     M(:, j) = (yp(end, :) - ym(end, :)).' / (2 * del);
+%!   endfor
+%!   assert (norm (M.' * J * M - J) <= 1e-8);
+%!   assert (norm (M - eye (2)) > 0.1);
+%! endfor
+
+%!test
+%! ## Kepler e = 0.6, h = T/100, (4,3), 200 periods: bounded energy error,
+%! ## angular momentum to round-off (1000 periods: tests/c/test_spvi_kepler)
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! o = symplecticset ("TimeStepSize", 2*pi/100, "Q_DoFs", 4, "Nodes", 3);
+%! [t, y] = odeSPVI (@kepler, [0 200*2*pi], y0, o);
+%! H = sum (y(:, 3:4).^2, 2) / 2 - 1 ./ sqrt (sum (y(:, 1:2).^2, 2));
+%! L = y(:, 1) .* y(:, 4) - y(:, 2) .* y(:, 3);
+%! dH = abs (H + 0.5) / 0.5;
+%! first = t <= 20*2*pi;  last = t >= 180*2*pi;
+%! assert (max (dH(last)) <= 1.5 * max (dH(first)));
+%! assert (max (dH) < 1e-6);
+%! assert (max (abs (L - L(1))) / abs (L(1)) <= 1e-12);
+
+%!test
+%! ## the four sources of Newton's matrix give the same trajectory
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! o = symplecticset ("TimeStepSize", 2*pi/100);
+%! s1 = odeSPVI (@kepler1, [0 4*pi], y0, o);
+%! s2 = odeSPVI (@kepler, [0 4*pi], y0, o);
+%! s3 = odeSPVI (@kepler1, [0 4*pi], y0, symplecticset (o, "HamiltonianHessFcn", @kepler_hess));
+%! s4 = odeSPVI (@kepler1, [0 4*pi], y0, symplecticset (o, "Jacobian", @kepler_jac));
+%! assert (s1.stats.jacobian_source, "finite differences of FCN");
+%! assert (s2.stats.jacobian_source, "second output of FCN (Hessian)");
+%! assert (s3.stats.jacobian_source, "HamiltonianHessFcn");
+%! assert (s4.stats.jacobian_source, "Jacobian (function)");
+%! assert (s2.y, s1.y, 1e-10);
+%! assert (s3.y, s1.y, 1e-10);
+%! assert (s4.y, s1.y, 1e-10);
+
+%!test
+%! ## sol reports the pair and its order
+%! s = odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "Nodes", 4));
+%! assert ([s.Q_DoFs, s.Nodes, s.order], [5, 4, 8]);
+%! s = odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "PolynomialDegree", 2));
+%! assert ([s.Q_DoFs, s.Nodes, s.order], [3, 3, 4]);
+%! s = odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1));
+%! assert ([s.Q_DoFs, s.Nodes, s.order], [4, 3, 6]);
+
+## ----------------------------------------------------------------- bad pairs
+%!error <degenerate pair> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 3, "Nodes", 1))
+%!error <degenerate pair> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 5, "Nodes", 2))
+%!error <Q_DoFs must be between 2> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 1))
+%!error <Nodes must be between 1> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Nodes", 0))
+%!error <Nodes must be an integer> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Nodes", 2.5))
+%!error <P_DoFs must be between 1> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("P_DoFs", 41))
