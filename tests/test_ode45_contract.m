@@ -531,11 +531,11 @@
 %!   endif
 %! endfor
 %! out = __makeinfo__ (get_help_text ("odeSE"), "plain text");
-%! assert (! isempty (regexp (out, "Refine'?\\s+\\(default 1: step points only")));
+%! assert (! isempty (regexp (out, "Refine'?\\s+\\(default\\s+1:\\s+step\\s+points\\s+only")));
 %! assert (! isempty (strfind (out, "odeplot")));
 %! assert (! isempty (strfind (out, "Vectorized")));
 %! out = __makeinfo__ (get_help_text ("odeSPVI"), "plain text");
-%! assert (! isempty (regexp (out, "Refine'?\\s+defaults to 1 \\(step points only")));
+%! assert (! isempty (regexp (out, "Refine'?\\s+defaults\\s+to\\s+1\\s+\\(step\\s+points\\s+only")));
 %! assert (! isempty (strfind (out, "Vectorized")));
 
 %!test

@@ -38,13 +38,28 @@
    midpoint rule.
 
    Solution: sym_newton (simplified Newton, LU kept across iterations and
-   steps while it converges fast; rebuilt when h changed by > 20% since it
-   depends on h, and after a solve that needed more than 3 iterations),
-   then one more correction with the residual at the converged x, whose f
-   values also give p_{k+1} (see core_solve).  If the simplified iteration
-   fails, full Newton from the same start.  One sym_rhs_many call (m
-   states) per residual, so the Vectorized batch callback serves all nodes
-   at once.
+   steps while it converges fast).  Every residual costs one sym_rhs_many
+   call (m states; one call of the Vectorized batch callback), so the cost
+   of a step is its number of corrections; the last correction is not
+   followed by another residual: its f_p values are moved linearly to the
+   corrected x by the node Jacobians, and they give p_{k+1}.  The returned
+   x is therefore the one after the last correction, and the stopping test
+   bounds its estimated error: sym_newton stops when theta/(1-theta) |dx|
+   <= tol/100 (the same final accuracy as the earlier scheme of converging
+   to tol and then one unchecked correction with theta ~ 1e-2, but now
+   measured; see core_solve), and then the error that the linear move of
+   f_p leaves in p_{k+1} is estimated from the previous correction (whose
+   linear move is checked against the f evaluated after it) and, if above
+   tol/100, one more correction is made.  If the simplified iteration fails,
+   full Newton from the same start.
+
+   The matrix: from the node Jacobians at the start of a step (jac
+   callbacks, m of them); then, for the next steps, from node Jacobians
+   extrapolated in time (a polynomial through the node Jacobians of the
+   last one or two evaluations; no callback, one LU); evaluated anew after
+   a solve that needed more than 2 corrections while its first contraction
+   was slow (the matrix, not a far start, was to blame), and when h changed
+   by > 20%.
 
    Predictor: the previous accepted step's polynomials extrapolated (q
    from its Legendre series, re-expanded exactly in the new step by a
@@ -52,7 +67,11 @@
    a first step, after reset, or for the pairs n - 1 > m (whose extra q
    modes do not extrapolate), one explicit Euler estimate: measured, it
    saves 0.6-1.1 iterations per step over the constant start (a_i = 0,
-   P_j = p_k) for its one rhs call.
+   P_j = p_k) for its one rhs call.  At a fixed step the error of that
+   polynomial prediction (converged minus predicted x) is a smooth function
+   of the step's start, so the errors of the last steps are extrapolated
+   too and added (see predict_history): on Kepler e = 0.6, h = 2 pi/100 the
+   start error drops from 1e-6..1e-7 to 1e-9..1e-10 away from pericentre.
 
    Error estimate: the companion solution on the same step with (n + 1,
    m + 1), its own quadrature, Newton state and LU, started from the
@@ -66,10 +85,32 @@
 #include <math.h>
 #include <string.h>
 
-/* A solve that took more than this many iterations asks for a fresh
-   matrix at the next step (measured on Kepler (4,3): 3 saves a quarter of
-   the iterations for 0.14 matrices per step; see core_solve). */
-#define SPVI_REFRESH_ITERS 3
+/* Measured choices, on Kepler e = 0.6, h = 2 pi/100, 1000 periods, pairs
+   (3,2), (4,3), (5,4) (tests/c/test_spvi_kepler.c prints (4,3)); the
+   measurements are in the comments at their use. */
+/* A solve that took more than this many corrections asks for a fresh
+   matrix at the next step, if its first contraction was slower than
+   SPVI_THETA_FRESH (see core_solve). */
+#define SPVI_REFRESH_ITERS 2
+#define SPVI_THETA_FRESH 5e-5
+/* The estimated error of the returned solution is bounded by
+   SPVI_FINAL_TOL times the Newton tolerance (see core_solve) */
+#define SPVI_FINAL_TOL 1e-2
+/* at most this many corrections after sym_newton for the linear move of
+   f_p (see core_solve) */
+#define SPVI_MOVE_MAX 3
+/* Extrapolated node Jacobians: from evaluations at most SPVI_JX_STEPS
+   steps back, through at most SPVI_JX_POINTS of their nodes (the latest),
+   the older evaluation only when at most SPVI_JX_SPAN steps before the
+   latest, and only as many points as keep sum_j |L_j| at the new nodes
+   below SPVI_JX_LEBESGUE (see core_extrapolate) */
+#define SPVI_JX_STEPS 5
+#define SPVI_JX_SPAN 8
+#define SPVI_JX_POINTS 6
+#define SPVI_JX_LEBESGUE 1e4
+/* Predictor: errors of the polynomial prediction extrapolated over at
+   most this many past steps (see predict_history) */
+#define SPVI_HIST 4
 #define SPVI_MAX_DOFS 100
 
 /* One (n, m) discretization with its own Newton solver: the method, and
@@ -86,9 +127,19 @@ typedef struct {
   double *Y, *F, *tj;  /* node states and f values (2d x m), node times */
   double *xf;          /* the x at which F was evaluated */
   int fvalid;
+  double *Fo, *xfo;    /* the evaluation before it, in this solve */
+  int fovalid;
+  double dxn[2];       /* sizes of the first two corrections of a solve */
+  int ndx;
   double *x, *scale, *x0;
+  double *wk;          /* 2d (work) */
   sym_newton nw;
   double h_mat;        /* h of the kept matrix */
+  /* node Jacobians as evaluated: the latest (Ae[0]) and the one before
+     (Ae[1]), at the nodes of the steps (te, he) */
+  double *Ae[2];
+  double te[2], he[2];
+  int nae;             /* how many of them are valid */
   int cb_fail;         /* status of a failed callback in the matrix */
   /* the step being solved, for the callbacks */
   sym_system *sys;
@@ -102,6 +153,8 @@ typedef struct {
   double *y0, *y1;     /* 2d each */
   double *a;           /* a_1..a_{n-1}: a[(i-1)*d + k] */
   double *P;           /* P[j*d + k] */
+  double *xp;          /* the polynomial prediction of x (predict) */
+  int cont;            /* xp continued the step before, of the same h */
 } spvi_rec;
 
 typedef struct {
@@ -118,6 +171,12 @@ typedef struct {
   double *lv, *dlv;    /* n + 1: Legendre values (work) */
   double *cb;          /* m + 2: Lagrange basis values (work) */
   double *vq;          /* n d: values of q (work) */
+  /* errors of the polynomial prediction (solution - prediction) of the
+     last nhist accepted steps, newest first, SPVI_HIST + 1 of N each; all
+     continued steps of size hhist */
+  double *dhist;
+  int nhist;
+  double hhist;
 } spvi_state;
 
 /* ---------------------------------------------------------------- core */
@@ -128,7 +187,8 @@ core_free (spvi_core *c)
   sym_newton_free (&c->nw);
   double **p[] = { &c->z, &c->w, &c->phi, &c->dl, &c->wdl, &c->g, &c->xb,
                    &c->bw, &c->A, &c->Y, &c->F, &c->tj, &c->xf, &c->x,
-                   &c->scale, &c->x0 };
+                   &c->scale, &c->x0, &c->Fo, &c->xfo, &c->wk, &c->Ae[0],
+                   &c->Ae[1] };
   for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
     {
       sym_free (*p[i]);
@@ -194,6 +254,11 @@ core_init (spvi_core *c, int d, int n, int m)
   c->F = sym_calloc (nn * m, sizeof (double));
   c->tj = sym_calloc (m, sizeof (double));
   c->xf = sym_calloc (c->N, sizeof (double));
+  c->Fo = sym_calloc (nn * m, sizeof (double));
+  c->xfo = sym_calloc (c->N, sizeof (double));
+  c->wk = sym_calloc (nn, sizeof (double));
+  c->Ae[0] = sym_calloc (nn * nn * m, sizeof (double));
+  c->Ae[1] = sym_calloc (nn * nn * m, sizeof (double));
   c->x = sym_calloc (c->N, sizeof (double));
   c->scale = sym_calloc (c->N, sizeof (double));
   c->x0 = sym_calloc (c->N, sizeof (double));
@@ -201,7 +266,8 @@ core_init (spvi_core *c, int d, int n, int m)
   int st = SYM_ENOMEM;
   if (! c->z || ! c->w || ! c->phi || ! c->dl || ! c->wdl || ! c->g
       || ! c->xb || ! c->bw || ! c->A || ! c->Y || ! c->F || ! c->tj
-      || ! c->xf || ! c->x || ! c->scale || ! c->x0 || ! l)
+      || ! c->xf || ! c->x || ! c->scale || ! c->x0 || ! l || ! c->Fo
+      || ! c->xfo || ! c->wk || ! c->Ae[0] || ! c->Ae[1])
     goto fail;
   if ((st = sym_newton_init (&c->nw, c->N)))
     goto fail;
@@ -254,13 +320,33 @@ core_states (spvi_core *c, const double *x)
     }
 }
 
-/* F = f at the nodes of x (one batch call), cached by x. */
+/* F = f at the nodes of x (one batch call), cached by x.  The evaluation
+   before it in the same solve is kept in Fo (at xfo), and the sizes of the
+   first two moves between evaluations (the first two corrections) in
+   dxn. */
 static int
 core_eval (spvi_core *c, const double *x)
 {
   size_t nb = (size_t) c->N * sizeof (double);
   if (c->fvalid && memcmp (c->xf, x, nb) == 0)
     return SYM_SUCCESS;
+  c->fovalid = c->fvalid;
+  if (c->fvalid)
+    {
+      double *tmp = c->Fo;
+      c->Fo = c->F;
+      c->F = tmp;
+      tmp = c->xfo;
+      c->xfo = c->xf;
+      c->xf = tmp;
+      if (c->ndx < 2)
+        {
+          double v = 0.0;
+          for (int i = 0; i < c->N; i++)
+            v = fmax (v, fabs (x[i] - c->xfo[i]));
+          c->dxn[c->ndx++] = v;
+        }
+    }
   c->fvalid = 0;
   core_states (c, x);
   int st = sym_rhs_many (c->sys, c->m, c->tj, c->Y, c->F);
@@ -341,6 +427,23 @@ core_matrix (void *ctx, const double *x, double *M)
       if (st)
         return c->cb_fail = st;
     }
+  /* keep them for the extrapolation (core_extrapolate): a new step's
+     evaluation becomes the latest, a second one on the same step (a
+     refresh inside sym_newton) replaces it */
+  if (c->nae > 0 && c->te[0] != c->t)
+    {
+      double *tmp = c->Ae[1];
+      c->Ae[1] = c->Ae[0];
+      c->Ae[0] = tmp;
+      c->te[1] = c->te[0];
+      c->he[1] = c->he[0];
+      c->nae = 2;
+    }
+  else if (c->nae == 0)
+    c->nae = 1;
+  memcpy (c->Ae[0], c->A, nn * nn * m * sizeof (double));
+  c->te[0] = c->t;
+  c->he[0] = c->h;
   core_fill (c, M);
   return SYM_SUCCESS;
 }
@@ -470,23 +573,169 @@ core_full_newton (spvi_core *c, sym_system *sys)
   return SYM_NEWTON_FAIL;
 }
 
+/* The node Jacobians of this step (c->A) extrapolated in time from the
+   evaluated ones, and the matrix and LU from them; 0 if not done (nothing
+   to extrapolate from, or too far).  The node Jacobians are smooth
+   functions of t along the solution, sampled at the nodes of the steps
+   where they were evaluated: a polynomial through the latest samples
+   (at most SPVI_JX_POINTS; fewer while sum_j |L_j| at the new nodes
+   exceeds SPVI_JX_LEBESGUE) predicts them at the new nodes.  Measured
+   (Kepler, see the top): against keeping the evaluated ones unchanged,
+   the contraction rate one step after an evaluation drops from 1e-2..1e-3
+   to 1e-4..1e-6, and the rhs + jac calls per step from 8.76 to 7.68 for
+   (4,3), 6.55 to 5.58 for (3,2), 10.72 to 9.64 for (5,4); of that the
+   older evaluation gives 0.04-0.25.  Extrapolating further than about 5
+   steps did not pay. */
+static int
+core_extrapolate (spvi_core *c, sym_system *sys)
+{
+  const int m = c->m;
+  const size_t nn = 2 * (size_t) c->d, nb = nn * nn;
+  if (c->nae < 1 || c->te[0] == c->t
+      || ! (fabs (c->t - c->te[0]) <= SPVI_JX_STEPS * fabs (c->he[0])
+                                      * (1 + 1e-9)))
+    return 0;
+  /* sample times in units of he[0] from te[0], ascending in the direction
+     of integration; the older evaluation first */
+  double ts[2 * SPVI_JX_POINTS], bw[2 * SPVI_JX_POINTS];
+  double cb[2 * SPVI_JX_POINTS];
+  const double *src[2 * SPVI_JX_POINTS];
+  int np = 0;
+  for (int e = (c->nae > 1 && fabs (c->te[0] - c->te[1])
+                              <= SPVI_JX_SPAN * fabs (c->he[0]) * (1 + 1e-9));
+       e >= 0; e--)
+    for (int j = 0; j < m; j++)
+      {
+        double tz = (c->te[e] - c->te[0]) / c->he[0]
+                    + 0.5 * (c->he[e] / c->he[0]) * (1.0 + c->z[j]);
+        /* the latest SPVI_JX_POINTS only (they come in ascending order) */
+        if (np == SPVI_JX_POINTS)
+          {
+            memmove (ts, ts + 1, (np - 1) * sizeof (double));
+            memmove (src, src + 1, (np - 1) * sizeof (src[0]));
+            np--;
+          }
+        ts[np] = tz;
+        src[np++] = c->Ae[e] + (size_t) j * nb;
+      }
+  int off = 0;
+  for (;; off++)
+    {
+      bary_weights (np - off, ts + off, bw);
+      double lam = 0.0;
+      for (int i = 0; i < m; i++)
+        {
+          lagrange_basis (np - off, ts + off, bw,
+                          (c->tj[i] - c->te[0]) / c->he[0], cb);
+          double sum = 0.0;
+          for (int j = 0; j < np - off; j++)
+            sum += fabs (cb[j]);
+          lam = isnan (sum) ? INFINITY : fmax (lam, sum);
+        }
+      if (lam <= SPVI_JX_LEBESGUE || np - off == 1)
+        break;
+    }
+  for (int i = 0; i < m; i++)
+    {
+      lagrange_basis (np - off, ts + off, bw,
+                      (c->tj[i] - c->te[0]) / c->he[0], cb);
+      double *Ai = c->A + (size_t) i * nb;
+      for (size_t e = 0; e < nb; e++)
+        {
+          double v = 0.0;
+          for (int j = 0; j < np - off; j++)
+            v += cb[j] * src[off + j][e];
+          Ai[e] = v;
+        }
+    }
+  core_fill (c, c->nw.lu.a);
+  if (sym_lu_factor (&c->nw.lu, &sys->cnt))
+    sym_newton_invalidate (&c->nw);   /* sym_newton evaluates one */
+  return 1;
+}
+
+/* Estimated error, relative to S, that the linear move of f_p from xf
+   (the last evaluation) to x leaves in p_{k+1} = p_k + (h/2) sum_j w_j
+   f_p,j: the move from xfo to xf by the same node Jacobians is compared
+   with the f_p evaluated at xf, node by node, and scaled by the ratio of
+   the two moves.  0 if x = xf; infinite if there is no earlier
+   evaluation to compare with. */
+static double
+core_move_error (spvi_core *c, double S)
+{
+  const int d = c->d, n = c->n, m = c->m;
+  const size_t nn = 2 * (size_t) d;
+  const double *a = c->x, *af = c->xf, *ao = c->xfo;
+  double e = 0.0;
+  for (int j = 0; j < m; j++)
+    {
+      double n1 = 0.0, n2 = 0.0, mis = 0.0;
+      double *dy = c->wk;        /* Y(xf) - Y(xfo) at node j */
+      for (int k = 0; k < d; k++)
+        {
+          double v1 = 0.0, v2 = 0.0;
+          for (int i = 1; i < n; i++)
+            {
+              size_t ik = (size_t) (i - 1) * d + k;
+              v1 += c->phi[j * n + i] * (af[ik] - ao[ik]);
+              v2 += c->phi[j * n + i] * (a[ik] - af[ik]);
+            }
+          size_t ip = (size_t) (n - 1) * d + (size_t) j * d + k;
+          dy[k] = v1;
+          dy[d + k] = af[ip] - ao[ip];
+          n1 = fmax (n1, fmax (fabs (v1), fabs (dy[d + k])));
+          n2 = fmax (n2, fmax (fabs (v2), fabs (a[ip] - af[ip])));
+        }
+      if (n2 == 0.0)
+        continue;
+      if (! c->fovalid || n1 == 0.0)
+        return INFINITY;
+      const double *Aj = c->A + (size_t) j * nn * nn;
+      for (int k = 0; k < d; k++)
+        {
+          double v = c->F[(size_t) j * nn + d + k]
+                     - c->Fo[(size_t) j * nn + d + k];
+          for (size_t l = 0; l < nn; l++)
+            v -= Aj[(d + k) + l * nn] * dy[l];
+          mis = fmax (mis, fabs (v));
+        }
+      e += c->w[j] * mis * (n2 / n1);
+    }
+  return 0.5 * fabs (c->h) * e / S;
+}
+
 /* Solve the step (t, h, yk) from the start c->x; on success c->x holds
-   the solution and yend = [q_{k+1}; p_{k+1}].  polish: the final
-   correction below (the method's step; the companion of the error
-   estimate does without it: its result only enters a difference). */
+   the solution and yend = [q_{k+1}; p_{k+1}].  final: the method's step,
+   whose result must be converged to round-off (see below); the companion
+   of the error estimate (final = 0; its result only enters a difference)
+   stops at the Newton tolerance itself, from its own kept matrix.
+
+   The pairs n - 1 != m keep the earlier scheme (sym_newton to tol, then
+   one more correction from a new residual, unchecked; matrices evaluated,
+   never extrapolated; refreshed after more than 3 iterations; no history
+   in the predictor): their matrices are ill-conditioned (see the top), so
+   that the contraction rate measured from two corrections does not bound
+   the error left (measured on Kepler, 100 periods, local difference to a
+   tightly converged step: (3,3) 5e-16, (2,3) 8e-15 with the scheme of the
+   pairs n - 1 = m, against 2.3e-16 and 2.4e-16 with the earlier one; the
+   earlier one but with the history in the predictor: 1.4e-15 for
+   (2,3)).  Their results are the same as before, bit for bit. */
 static int
 core_solve (spvi_core *c, sym_system *sys, double t, double h,
-            const double *yk, double S, const spvi_state *s, int polish,
+            const double *yk, double S, const spvi_state *s, int final,
             double *yend)
 {
   const int d = c->d, n = c->n, m = c->m, N = c->N;
   const size_t nn = 2 * (size_t) d;
   const double hh = 0.5 * h;
+  const int fast = final && n - 1 == m;
+  int st;
   c->sys = sys;
   c->t = t;
   c->h = h;
   c->yk = yk;
   c->fvalid = 0;
+  c->ndx = 0;
   for (int j = 0; j < m; j++)
     c->tj[j] = t + hh * (c->z[j] + 1.0);
   /* The matrix depends on h: a new one when h changed by more than 20%.
@@ -497,14 +746,30 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
      costs +0..10%. */
   if (c->nw.have_matrix && ! (fabs (h - c->h_mat) <= 0.2 * fabs (c->h_mat)))
     sym_newton_invalidate (&c->nw);
+  /* A kept matrix of an earlier step: from the node Jacobians extrapolated
+     to this step's nodes (no callback) */
+  if (fast && c->nw.have_matrix)
+    core_extrapolate (c, sys);
   for (int i = 0; i < N; i++)
     c->scale[i] = S;
-  c->nw.tol = s->tol;
+  /* The returned x is the one after the last correction (no residual
+     follows it), so the stopping test theta/(1-theta) |dx| <= tol bounds
+     the error of the result itself: with tol/100 it is as accurate as the
+     earlier scheme (converge to tol, then one more correction from a new
+     residual, unchecked, with theta ~ 1e-2): local difference to a
+     tightly converged solution at most 2.8e-16 relative, angular momentum
+     of Kepler at round-off (1000 periods, see the top: 2e-14..1.3e-13).
+     With tol itself (so that tol bounds the result after the last
+     correction), 0.5 calls per step fewer, but local differences up to
+     1.9e-14, angular momentum drifts of 1.3e-12 for (4,3) and 1.2e-11 for
+     (3,2), a growing energy error for (5,4); with tol/10, 0.2-0.4 calls
+     fewer, local differences up to 1.5e-15 and drifts up to 1.3e-12. */
+  c->nw.tol = fast ? SPVI_FINAL_TOL * s->tol : s->tol;
   c->nw.maxit = s->maxit;
   sym_newton_problem prob = { core_residual, core_matrix, c };
   memcpy (c->x0, c->x, (size_t) N * sizeof (double));
   c->cb_fail = 0;
-  int st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &sys->cnt);
+  st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &sys->cnt);
   /* sym_newton reports a recoverable failure of the matrix callback as
      SYM_NEWTON_FAIL: pass the callback's own status on instead (and do
      not retry: it asked for a smaller step) */
@@ -515,43 +780,69 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
       memcpy (c->x, c->x0, (size_t) N * sizeof (double));
       st = core_full_newton (c, sys);
     }
-  if (! st && polish)
-    st = core_residual (c, c->x, c->nw.r);
+  /* p_{k+1} needs f_p at the final x: the f_p of the last evaluation are
+     moved there linearly (below).  The Jacobians of that move are those of
+     the matrix, of an earlier point or step, so the move errs by about
+     (h/2) |A - Df| |dx|, which the contraction rate of the iteration
+     (|dx| is the step to the final x) does not always bound: measured on
+     (3,2), local differences up to 6.9e-16 and an angular momentum drift
+     of 1.9e-13 without the check below; with it, 2.3e-16 and 9e-14, for
+     0.03-0.04 more corrections per step.  (The earlier scheme evaluated f
+     at the converged x once more and made one more correction from it,
+     moving f_p only by that much smaller one: an extra residual on every
+     step.) */
+  for (int k = 0; ! st && fast && k < SPVI_MOVE_MAX
+                  && core_move_error (c, S) > c->nw.tol; k++)
+    {
+      if ((st = core_residual (c, c->x, c->nw.r)))
+        break;
+      for (int i = 0; i < N; i++)
+        c->nw.dx[i] = -c->nw.r[i];
+      if ((st = sym_lu_solve (&c->nw.lu, c->nw.dx, &sys->cnt)))
+        break;
+      for (int i = 0; i < N; i++)
+        c->x[i] += c->nw.dx[i];
+      sys->cnt.nnewton++;
+      c->nw.iters++;
+    }
+  /* the earlier scheme: one more correction (not counted in iters) */
+  if (! st && final && ! fast && ! (st = core_residual (c, c->x, c->nw.r)))
+    {
+      for (int i = 0; i < N; i++)
+        c->nw.dx[i] = -c->nw.r[i];
+      if (! (st = sym_lu_solve (&c->nw.lu, c->nw.dx, &sys->cnt)))
+        {
+          for (int i = 0; i < N; i++)
+            c->x[i] += c->nw.dx[i];
+          sys->cnt.nnewton++;
+        }
+    }
   if (st)
     {
       c->fvalid = 0;
       return st;
     }
-  /* The end of the step must be exact to round-off, and p_{k+1} needs f_p
-     at the final x, not at the iterate before it.  Measured on Kepler
-     (4,3), h = 2 pi/100, 1000 periods, relative drift of the angular
-     momentum (an exact invariant of the method, so it shows what the
-     iteration leaves): f_p moved to the final x linearly by the node
-     Jacobians, no extra call: 5e-11; f evaluated at the final x (one more
-     rhs_many): 5e-13; that evaluation used as one more simplified Newton
-     correction, with f_p moved linearly to the corrected x (what is done
-     here; same cost): 5e-14, the round-off level (4e-14 with tol 1e-18). */
-  if (polish)
-    {
-      for (int i = 0; i < N; i++)
-        c->nw.dx[i] = -c->nw.r[i];
-      if ((st = sym_lu_solve (&c->nw.lu, c->nw.dx, &sys->cnt)))
-        return st;
-      for (int i = 0; i < N; i++)
-        c->x[i] += c->nw.dx[i];
-      sys->cnt.nnewton++;
-    }
-  /* Fresh matrix for the next step after a slow solve (RADAU5 refreshes
-     its Jacobian when theta > 1e-3; counting iterations is the cheaper
-     rule here: on Kepler (4,3) 4.07 iterations and 12.6 calls per step,
-     against 5.03 and 15.1 with the matrix of the first step kept
-     throughout, 4.39 and 13.4 with the theta rule). */
-  if (c->nw.iters > SPVI_REFRESH_ITERS)
+  /* A fresh matrix for the next step after a slow solve (more than
+     SPVI_REFRESH_ITERS corrections), unless the matrix was not to blame:
+     its first contraction |dx_2|/|dx_1| was below SPVI_THETA_FRESH, so the
+     start was just far (near the pericentre of Kepler the predictor is off
+     by 1e-3, and even a fresh matrix needs 3 corrections).  Measured
+     (Kepler, 1000 periods; rhs + jac calls per step for (4,3), (3,2),
+     (5,4)): refresh after more than 3 corrections (the earlier rule,
+     chosen with start errors of 1e-6 and a final extra correction) 9.39,
+     6.50, 12.40; after more than 2: 7.59, 5.48, 9.68, of them 0.78, 0.72,
+     0.80 jac; the rule here: 7.68, 5.58, 9.64, of them 0.57, 0.52, 0.60
+     jac.  A quarter fewer matrices for 0.1 more calls; with
+     finite-difference Jacobians (each 2d rhs calls per node) it is 0.5-0.6
+     calls fewer: 9.39, 7.17, 11.44 rhs calls against 9.93, 7.64, 12.08. */
+  if (fast ? c->nw.iters > SPVI_REFRESH_ITERS
+             && ! (c->ndx >= 2 && c->dxn[1] <= SPVI_THETA_FRESH * c->dxn[0])
+           : c->nw.iters > 3)
     sym_newton_invalidate (&c->nw);
 
   /* F is at xf, the iterate before the last correction: f_p += Apq dQ +
-     App dP (the node Jacobians of the kept matrix; the correction is
-     tiny, so their age does not matter). */
+     App dP (the node Jacobians of the matrix; the error of this move was
+     checked above). */
   const double *a = c->x, *P = c->x + (size_t) (n - 1) * d;
   for (int j = 0; j < m; j++)
     {
@@ -604,7 +895,8 @@ rec_free (spvi_rec *r)
   sym_free (r->y1);
   sym_free (r->a);
   sym_free (r->P);
-  r->y0 = r->y1 = r->a = r->P = NULL;
+  sym_free (r->xp);
+  r->y0 = r->y1 = r->a = r->P = r->xp = NULL;
 }
 
 static int
@@ -615,7 +907,8 @@ rec_init (spvi_rec *r, int d, int n, int m)
   r->y1 = sym_calloc (2 * (size_t) d, sizeof (double));
   r->a = sym_calloc ((size_t) (n - 1) * d, sizeof (double));
   r->P = sym_calloc ((size_t) m * d, sizeof (double));
-  if (! r->y0 || ! r->y1 || ! r->a || ! r->P)
+  r->xp = sym_calloc ((size_t) (n - 1 + m) * d, sizeof (double));
+  if (! r->y0 || ! r->y1 || ! r->a || ! r->P || ! r->xp)
     {
       rec_free (r);
       return SYM_ENOMEM;
@@ -640,6 +933,7 @@ spvi_free (void *state)
   sym_free (s->dlv);
   sym_free (s->cb);
   sym_free (s->vq);
+  sym_free (s->dhist);
   sym_free (s);
 }
 
@@ -701,8 +995,10 @@ spvi_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
       s->dlv = sym_calloc (n + 2, sizeof (double));
       s->cb = sym_calloc (m + 3, sizeof (double));
       s->vq = sym_calloc ((size_t) n * d, sizeof (double));
+      s->dhist = sym_calloc ((size_t) (SPVI_HIST + 1) * s->lo.N,
+                             sizeof (double));
       if (! s->xi || ! s->vinv || ! s->f0 || ! s->lv || ! s->dlv || ! s->cb
-          || ! s->vq)
+          || ! s->vq || ! s->dhist)
         st = SYM_ENOMEM;
     }
   /* The Gauss transform: for a polynomial v of degree < n,
@@ -794,6 +1090,8 @@ predict (spvi_state *s, sym_system *sys, double t, double h, const double *y,
   for (int k = 0; cont && k < 2 * d; k++)
     cont = fabs (y[k] - r->y1[k]) <= 1e-12 * ynorm;
   double qend = 0.0;
+  /* the same h (up to the round-off of fixed steps t0 + k h) */
+  s->trial->cont = cont && fabs (h - r->h) <= 1e-10 * fabs (h);
   if (cont)
     {
       /* new z' <-> old z = 1 + rho (z' + 1) */
@@ -849,6 +1147,66 @@ predict (spvi_state *s, sym_system *sys, double t, double h, const double *y,
   return SYM_SUCCESS;
 }
 
+/* Binomial extrapolation: v_new ~ sum_{l<L} XC[L][l] v_{-l}, exact for
+   polynomials of degree < L in the step number. */
+static const double XC[SPVI_HIST + 1][SPVI_HIST] = {
+  { 0 }, { 1 }, { 2, -1 }, { 3, -3, 1 }, { 4, -6, 4, -1 }
+};
+
+/* The start of a continued step of the history's h: the polynomial
+   prediction (in s->lo.x, kept in the trial's xp) plus the extrapolated
+   errors of the predictions of the last steps.  The error of the
+   polynomial prediction is O(h^(m+1)) (the stage order) but a smooth
+   function of the step's start at a fixed h, so its differences over
+   steps are smaller by factors of about h/(time scale).  The order L
+   (<= SPVI_HIST) is the one that would have predicted the newest error
+   best from the ones before (a wrong order near fast passages, where the
+   extrapolation is poor, costs nothing: the start is then off anyway).
+   Measured (Kepler, see the top; rhs + jac calls per step for (4,3),
+   (3,2), (5,4)): without it 8.37, 6.57, 10.36; with it 7.68, 5.58, 9.64.
+   The start error of (4,3) goes from 1e-6..1e-7 to 1e-9..1e-10 over most
+   of the orbit (near the pericentre, r = 0.4, it stays 1e-3 with or
+   without).  L up to 5 or 6 saves another 0.1-0.2 calls but amplifies
+   the round-off of the past solutions (by up to 2^L - 1, after the
+   factor 10-100 of the polynomial continuation) to the size of the start
+   error itself near the apocentre (1e-12): the number of corrections then
+   follows the last bits of f (the Vectorized form of an Octave function
+   against its scalar form: 0.5% more or fewer evaluations; see
+   test_spvi_kepler); with L <= 4 it did not in any of the runs measured.
+   Not for n - 1 != m (see core_solve). */
+static void
+predict_history (spvi_state *s, double h)
+{
+  const int N = s->lo.N;
+  const spvi_rec *tr = s->trial;
+  memcpy (tr->xp, s->lo.x, (size_t) N * sizeof (double));
+  /* not for n - 1 != m (see core_solve) */
+  if (s->n - 1 != s->m || ! tr->cont || s->nhist < 2
+      || ! (fabs (h - s->hhist) <= 1e-10 * fabs (h)))
+    return;
+  int best_l = 0;
+  double best = INFINITY;
+  for (int L = 0; L < s->nhist && L <= SPVI_HIST; L++)
+    {
+      double e = 0.0;
+      for (int i = 0; i < N; i++)
+        {
+          double v = s->dhist[i];
+          for (int l = 0; l < L; l++)
+            v -= XC[L][l] * s->dhist[(size_t) (l + 1) * N + i];
+          e = fmax (e, fabs (v));
+        }
+      if (e < best)
+        {
+          best = e;
+          best_l = L;
+        }
+    }
+  for (int l = 0; l < best_l; l++)
+    for (int i = 0; i < N; i++)
+      s->lo.x[i] += XC[best_l][l] * s->dhist[(size_t) l * N + i];
+}
+
 static int
 spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
            double *ynext, double *yerr)
@@ -871,6 +1229,7 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
   int st = predict (s, sys, t, h, tr->y0, &S);
   if (st)
     return st;
+  predict_history (s, h);
   st = core_solve (&s->lo, sys, t, h, tr->y0, S, s, 1, tr->y1);
   if (st)
     return st;
@@ -908,6 +1267,25 @@ spvi_accept (void *state)
   spvi_state *s = state;
   if (! s->trial_ok)
     return;
+  /* the error of its polynomial prediction joins the history */
+  const spvi_rec *tr = s->trial;
+  const int N = s->lo.N, na = (s->n - 1) * s->d;
+  if (tr->cont)
+    {
+      if (! (s->nhist > 0 && fabs (tr->h - s->hhist) <= 1e-10 * fabs (tr->h)))
+        s->nhist = 0;
+      memmove (s->dhist + N, s->dhist,
+               (size_t) SPVI_HIST * N * sizeof (double));
+      for (int i = 0; i < na; i++)
+        s->dhist[i] = tr->a[i] - tr->xp[i];
+      for (int i = na; i < N; i++)
+        s->dhist[i] = tr->P[i - na] - tr->xp[i];
+      if (s->nhist <= SPVI_HIST)
+        s->nhist++;
+      s->hhist = tr->h;
+    }
+  else
+    s->nhist = 0;
   spvi_rec *tmp = s->cur;
   s->cur = s->trial;
   s->trial = tmp;
@@ -948,6 +1326,8 @@ spvi_reset (void *state)
   spvi_state *s = state;
   s->have_cur = 0;
   s->trial_ok = 0;
+  s->nhist = 0;
+  s->lo.nae = 0;
   sym_newton_invalidate (&s->lo.nw);
   if (s->have_hi)
     sym_newton_invalidate (&s->hi.nw);

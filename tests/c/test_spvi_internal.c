@@ -171,6 +171,86 @@ test_predictor_exact (void)
   test_spvi_internal_copy->free (s);
 }
 
+/* The extrapolated node Jacobians: exact (to round-off) when Df is a
+   polynomial in t of degree < m along the solution.  f = (p, -t q): Df =
+   [0 1; -t 0], linear in t.  Also the sample selection with two earlier
+   evaluations, and the limits (nothing to extrapolate from, too far). */
+static int
+tlin_rhs (double t, const double *y, double *dy, void *user)
+{
+  (void) user;
+  dy[0] = y[1];
+  dy[1] = -t * y[0];
+  return 0;
+}
+
+static int
+tlin_jac (double t, const double *y, double *df, void *user)
+{
+  (void) y;
+  (void) user;
+  df[0] = 0.0;
+  df[1] = -t;
+  df[2] = 1.0;
+  df[3] = 0.0;
+  return 0;
+}
+
+static void
+test_extrapolate (void)
+{
+  sym_system sys = ts_system (1, tlin_rhs, tlin_jac, NULL);
+  const double yk[2] = { 0.4, -0.3 };
+  double worst = 0.0;
+  int ok = 1;
+  for (int m = 1; m <= 4; m++)
+    {
+      spvi_core c;
+      if (core_init (&c, 1, m + 1, m))
+        {
+          ok = 0;
+          continue;
+        }
+      double *M = malloc ((size_t) c.N * c.N * sizeof (double));
+      const double h = 0.25;
+      /* evaluations at the steps from 0.5 and 0.75 (at least two sample
+         times even for m = 1), then steps 1..6 steps after the latest
+         (the last one too far) */
+      setup (&c, &sys, 0.5, h, yk);
+      core_matrix (&c, c.x, M);
+      setup (&c, &sys, 0.75, h, yk);
+      core_matrix (&c, c.x, M);
+      ok &= c.nae == 2;
+      for (int k = 1; k <= 6; k++)
+        {
+          setup (&c, &sys, 0.75 + k * h, h, yk);
+          c.nw.have_matrix = 1;
+          int done = core_extrapolate (&c, &sys);
+          ok &= done == (k <= SPVI_JX_STEPS);
+          if (! done)
+            continue;
+          for (int j = 0; j < m; j++)
+            {
+              double ex[4];
+              tlin_jac (c.tj[j], NULL, ex, NULL);
+              for (int e = 0; e < 4; e++)
+                worst = fmax (worst, fabs (c.A[j * 4 + e] - ex[e]));
+            }
+        }
+      /* a reset forgets them */
+      c.nae = 0;
+      setup (&c, &sys, 1.0, h, yk);
+      ok &= core_extrapolate (&c, &sys) == 0;
+      free (M);
+      core_free (&c);
+    }
+  printf ("extrapolated node Jacobians, Df linear in t: max error %.2e\n",
+          worst);
+  CHECK (ok, "extrapolation done where it should not be, or not done");
+  /* round-off, amplified by at most SPVI_JX_LEBESGUE */
+  CHECK (worst < 1e-11, "extrapolated Jacobians off by %.3g", worst);
+}
+
 /* The Gauss transform inverts the Legendre-Vandermonde matrix. */
 static void
 test_vinv (void)
@@ -205,6 +285,7 @@ main (void)
 {
   test_matrix ();
   test_predictor_exact ();
+  test_extrapolate ();
   test_vinv ();
   return tu_finish ("test_spvi_internal");
 }
