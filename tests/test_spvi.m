@@ -147,6 +147,39 @@
 %! s = odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1));
 %! assert ([s.Q_DoFs, s.Nodes, s.order], [4, 3, 6]);
 
+%!test
+%! ## adaptive mode advances with the (n+1, m+1) companion: its order
+%! s = odeSPVI (@pendulum, [0 1], [1; 0], odeset ("RelTol", 1e-6));
+%! assert ([s.Q_DoFs, s.Nodes, s.order], [4, 3, 8]);
+
+## ----------------------------------------------------------------- adaptive
+%!test
+%! ## Kepler e = 0.6, one period (the exact solution returns to y0): 100x
+%! ## tighter RelTol gives at least 30x smaller end-point error, and
+%! ## RelTol = 1e-10 reaches 1e-8
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! rt = [1e-4 1e-6 1e-8 1e-10];
+%! err = zeros (size (rt));  nst = err;
+%! for i = 1:numel (rt)
+%!   s = odeSPVI (@kepler, [0 2*pi], y0, odeset ("RelTol", rt(i), "AbsTol", rt(i)));
+%!   err(i) = norm (s.y(:, end) - y0, Inf);
+%!   nst(i) = s.stats.nsteps;
+%!   assert (s.x(end), 2*pi);
+%! endfor
+%! assert (all (err(1:end-1) ./ err(2:end) >= 30), "errors %s", mat2str (err, 3));
+%! assert (err(end) <= 1e-8);
+%! assert (all (diff (nst) > 0));
+%! ## the estimate is honest: the error is not below round-off everywhere
+%! assert (err(1) > 1e-6);
+
+%!test
+%! ## the adaptive dense output is continuous and ends on each step's value
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! s = odeSPVI (@kepler, [0 2*pi], y0, odeset ("RelTol", 1e-6, "AbsTol", 1e-6));
+%! tm = s.x(5) * (1 - 1e-13);
+%! [t, y] = odeSPVI (@kepler, [0, tm, 2*pi], y0, odeset ("RelTol", 1e-6, "AbsTol", 1e-6));
+%! assert (y(2, :), s.y(:, 5).', 1e-9);
+
 ## ----------------------------------------------------------------- bad pairs
 %!error <degenerate pair> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 3, "Nodes", 1))
 %!error <degenerate pair> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 5, "Nodes", 2))

@@ -76,6 +76,13 @@
    Error estimate: the companion solution on the same step with (n + 1,
    m + 1), its own quadrature, Newton state and LU, started from the
    low-order polynomials; yerr = y_low - y_companion = O(h^(order+1)).
+   The adaptive run then advances with the companion's value (local
+   extrapolation, as ode45 advances with the higher order of its pair):
+   its error is far below the estimate, so the achieved error follows the
+   tolerance as a user of ode45 expects.  Fixed steps (no estimate) are
+   the (n, m) method alone.  The q polynomial of such a step gets the
+   linear correction (z+1)/2 (q_companion - q_low)(1), so the dense output
+   stays continuous and ends on the step's value.
 
    Dense output: q from the Legendre series of the last accepted step, p
    from the polynomial through (-1, p_k), (z_j, P_j), (1, p_{k+1}). */
@@ -154,6 +161,8 @@ typedef struct {
   double *a;           /* a_1..a_{n-1}: a[(i-1)*d + k] */
   double *P;           /* P[j*d + k] */
   double *xp;          /* the polynomial prediction of x (predict) */
+  double *dq;          /* d: end correction of q (adaptive), or zeros */
+  int has_dq;
   int cont;            /* xp continued the step before, of the same h */
 } spvi_rec;
 
@@ -896,7 +905,8 @@ rec_free (spvi_rec *r)
   sym_free (r->a);
   sym_free (r->P);
   sym_free (r->xp);
-  r->y0 = r->y1 = r->a = r->P = r->xp = NULL;
+  sym_free (r->dq);
+  r->y0 = r->y1 = r->a = r->P = r->xp = r->dq = NULL;
 }
 
 static int
@@ -908,7 +918,8 @@ rec_init (spvi_rec *r, int d, int n, int m)
   r->a = sym_calloc ((size_t) (n - 1) * d, sizeof (double));
   r->P = sym_calloc ((size_t) m * d, sizeof (double));
   r->xp = sym_calloc ((size_t) (n - 1 + m) * d, sizeof (double));
-  if (! r->y0 || ! r->y1 || ! r->a || ! r->P || ! r->xp)
+  r->dq = sym_calloc ((size_t) d, sizeof (double));
+  if (! r->y0 || ! r->y1 || ! r->a || ! r->P || ! r->xp || ! r->dq)
     {
       rec_free (r);
       return SYM_ENOMEM;
@@ -1239,6 +1250,7 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
   tr->t = t;
   tr->h = h;
   tr->tend = t + h;
+  tr->has_dq = 0;
 
   if (yerr)
     {
@@ -1253,8 +1265,17 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
       st = core_solve (c, sys, t, h, tr->y0, S, s, 0, yerr);
       if (st)
         return st;
+      /* yerr holds the companion's value: advance with it (local
+         extrapolation) and return the estimate of the low-order error */
+      for (int k = 0; k < d; k++)
+        tr->dq[k] = yerr[k] - tr->y1[k];
+      tr->has_dq = 1;
       for (int i = 0; i < nn; i++)
-        yerr[i] = tr->y1[i] - yerr[i];
+        {
+          double hi = yerr[i];
+          yerr[i] = tr->y1[i] - hi;
+          tr->y1[i] = hi;
+        }
     }
   memcpy (ynext, tr->y1, (size_t) nn * sizeof (double));
   s->trial_ok = 1;
@@ -1315,7 +1336,7 @@ spvi_dense (void *state, sym_system *sys, double t, double *y)
   double z = 2.0 * (t - r->t) / r->h - 1.0;
   rec_dq (s, r, z, y);
   for (int k = 0; k < d; k++)
-    y[k] += r->y0[k];
+    y[k] += r->y0[k] + (r->has_dq ? 0.5 * (z + 1.0) * r->dq[k] : 0.0);
   rec_p (s, r, z, y + d);
   return SYM_SUCCESS;
 }
