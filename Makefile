@@ -4,6 +4,7 @@
 #   make demo           all, then run tools/demo.m
 #   make check          all, then the whole test suite (C tests + Octave tests)
 #   make valgrind       the C tests under valgrind
+#   make check-memory   the MEX functions under valgrind (tests/check_memory.sh, ~90 s)
 #   make dist           symplectic-<version>.tar.gz, the tarball pkg install takes
 #   make install        dist, then pkg install it into Octave
 #   make check-installed  install the tarball into a temporary prefix, test it there
@@ -76,6 +77,11 @@ check-octave: mex
 valgrind: deps
 	$(MAKE) -C tests/c valgrind
 
+# Fails on memory errors (invalid reads/writes, uninitialised values) whose
+# stack involves our code; Octave's own noise is reported, not failed.
+check-memory: mex
+	sh tests/check_memory.sh "$(CURDIR)/inst" "$(OCTAVE)"
+
 bench: all
 	$(OCTAVE) --norc --no-gui --path "$(CURDIR)/inst" bench/run_benchmarks.m
 
@@ -114,5 +120,5 @@ clean:
 	$(MAKE) -C tests/c clean
 	rm -rf build $(PACKAGE)-*.tar.gz fntests.log octave-workspace
 
-.PHONY: all deps mex demo check check-c check-octave valgrind bench dist \
-        install check-installed clean
+.PHONY: all deps mex demo check check-c check-octave valgrind check-memory \
+        bench dist install check-installed clean

@@ -400,7 +400,8 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
               h = rem;
               last = 1;
             }
-          if (h < 16 * DBL_EPSILON * fmax (fabs (t), fabs (tend))
+          /* too small to move t: round-off of t itself, not of tf */
+          if ((h < 16 * DBL_EPSILON * fabs (t) || t + r.dir * h == t)
               && ! last)
             {
               result = SYM_ESTEPSIZE;
@@ -438,7 +439,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
             fac = fmin (fac, 0.5);
           h *= fac;
           last_rejected = 1;
-          if (h < 16 * DBL_EPSILON * fmax (fabs (t), fabs (tend)))
+          if (h < 16 * DBL_EPSILON * fabs (t) || t + r.dir * h == t)
             {
               result = st > 0 ? fatal_from (st) : SYM_ESTEPSIZE;
               goto done;

@@ -4,6 +4,8 @@
 
 #include <ctype.h>
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <string.h>
 
 static const char *BADARG = "Octave:invalid-input-arg";
@@ -43,6 +45,17 @@ is_real_numeric (const mxArray *v)
          && ! mxIsComplex (v) && ! mxIsSparse (v);
 }
 
+/* "1x2 double", "2x2 sparse double", "1x1 complex double", "1x3 char": what
+   the user gave, for messages. */
+static const char *
+describe (const mxArray *v, char *buf, size_t len)
+{
+  snprintf (buf, len, "%dx%d %s%s%s", (int) mxGetM (v), (int) mxGetN (v),
+            mxIsSparse (v) ? "sparse " : "",
+            mxIsComplex (v) ? "complex " : "", mxGetClassName (v));
+  return buf;
+}
+
 /* Element i of a real numeric array as double. */
 static double
 elem (const mxArray *v, size_t i)
@@ -60,9 +73,10 @@ static double
 pos_scalar (const char *solver, const mxArray *v, const char *name,
             int allow_inf)
 {
+  char buf[64];
   if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive real scalar",
-                       solver, name);
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive real scalar, "
+                       "got %s", solver, name, describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! (x > 0) || (! allow_inf && ! isfinite (x)))
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive %sscalar, got %g",
@@ -74,9 +88,10 @@ static long
 pos_integer (const char *solver, const mxArray *v, const char *name,
              long lo, long hi)
 {
+  char buf[64];
   if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer scalar",
-                       solver, name);
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer scalar, got %s",
+                       solver, name, describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! isfinite (x) || x != floor (x))
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer, got %g",
@@ -105,7 +120,9 @@ on_off (const char *solver, const mxArray *v, const char *name)
   else if ((mxIsLogical (v) || is_real_numeric (v))
            && mxGetNumberOfElements (v) == 1)
     return mxIsLogical (v) ? mxGetLogicals (v)[0] != 0 : elem (v, 0) != 0;
-  mexErrMsgIdAndTxt (BADARG, "%s: %s must be \"on\" or \"off\"", solver, name);
+  char buf[64];
+  mexErrMsgIdAndTxt (BADARG, "%s: %s must be \"on\" or \"off\", got %s",
+                     solver, name, describe (v, buf, sizeof buf));
   return 0;
 }
 
@@ -129,9 +146,11 @@ static const mxArray *
 function_opt (const char *solver, const mxArray *opts, const char *name)
 {
   const mxArray *v = field (opts, name);
+  char buf[64];
   if (v && ! symmex_is_function (v))
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be a function handle or the "
-                       "name of a function", solver, name);
+                       "name of a function, got %s", solver, name,
+                       describe (v, buf, sizeof buf));
   return v;
 }
 
@@ -140,11 +159,13 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                       int is_spvi, symmex_opts *o)
 {
   const mxArray *v;
+  char buf[64];
   memset (o, 0, sizeof (*o));
   if (opts && ! mxIsEmpty (opts)
       && ! (mxIsStruct (opts) && mxGetNumberOfElements (opts) == 1))
     mexErrMsgIdAndTxt (BADARG, "%s: OPTS must be a struct from odeset or "
-                       "symplecticset (or a plain 1x1 struct)", solver);
+                       "symplecticset (or a plain 1x1 struct), got %s",
+                       solver, describe (opts, buf, sizeof buf));
   if (opts && mxIsEmpty (opts))
     opts = NULL;
 
@@ -158,7 +179,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
       size_t k = mxGetNumberOfElements (v);
       if (! is_real_numeric (v) || (k != 1 && k != (size_t) n))
         mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a positive scalar or "
-                           "a vector of %d elements (numel (Y0))", solver, n);
+                           "a vector of %d elements (numel (Y0)), got %s",
+                           solver, n, describe (v, buf, sizeof buf));
       for (size_t i = 0; i < k; i++)
         {
           o->atol[i] = elem (v, i);
@@ -184,7 +206,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
       size_t k = mxGetNumberOfElements (v);
       if (! is_real_numeric (v) && ! mxIsLogical (v))
         mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must be a vector of "
-                           "indices into Y0", solver);
+                           "indices into Y0, got %s", solver,
+                           describe (v, buf, sizeof buf));
       o->outputsel = mxMalloc (sizeof (int) * (k + 1));
       if (mxIsLogical (v))
         {
@@ -215,12 +238,27 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
       if (symmex_is_function (v))
         o->jacobian = v;
       else if (is_real_numeric (v) && mxGetM (v) == (size_t) n
-               && mxGetN (v) == (size_t) n && mxIsDouble (v))
-        o->jacobian = v;
+               && mxGetN (v) == (size_t) n)
+        {
+          if (! mxIsDouble (v))
+            {
+              /* single or integer: a double copy (freed with the call) */
+              mxArray *in[1] = { (mxArray *) v }, *out[1] = { NULL };
+              mexCallMATLAB (1, out, 1, in, "double");
+              v = out[0];
+            }
+          const double *jv = mxGetPr (v);
+          for (size_t i = 0; i < (size_t) n * n; i++)
+            if (! isfinite (jv[i]))
+              mexErrMsgIdAndTxt (BADARG, "%s: the Jacobian matrix must be "
+                                 "finite, element %d is %g", solver,
+                                 (int) i + 1, jv[i]);
+          o->jacobian = v;
+        }
       else
-        mexErrMsgIdAndTxt (BADARG, "%s: Jacobian must be a %dx%d real "
-                           "matrix (df/dy) or a function handle", solver, n,
-                           n);
+        mexErrMsgIdAndTxt (BADARG, "%s: Jacobian must be a function handle "
+                           "or a full real %dx%d matrix (df/dy), got %s",
+                           solver, n, n, describe (v, buf, sizeof buf));
     }
   o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");
   o->h_fixed = (v = field (opts, "TimeStepSize"))
@@ -232,6 +270,10 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                  ? on_off (solver, v, "Separable") : 0;
   o->newton_tol = (v = field (opts, "NewtonTol"))
                   ? pos_scalar (solver, v, "NewtonTol", 0) : 0;
+  if (! (o->newton_tol < 1))
+    mexErrMsgIdAndTxt (BADARG, "%s: NewtonTol must be below 1 (it is "
+                       "relative to the size of y), got %g", solver,
+                       o->newton_tol);
   o->max_newton = (v = field (opts, "MaxNewtonIterations"))
                   ? (int) pos_integer (solver, v, "MaxNewtonIterations", 1,
                                        1000) : 0;
@@ -269,4 +311,45 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                            "unless Q_DoFs <= 2*Nodes", solver, o->q_dofs,
                            o->nodes);
     }
+}
+
+/* ------------------------------------------------------------ messages */
+
+/* See symmex.h: Octave prefixes "NAME: " to the messages of
+   mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt; drop ours so it shows once.
+   (A message that does not begin with the MEX function's name is passed on
+   as it is.)  From here on the two names are Octave's own functions. */
+#undef mexErrMsgIdAndTxt
+#undef mexWarnMsgIdAndTxt
+
+static const char *
+without_own_prefix (const char *msg)
+{
+  const char *fn = mexFunctionName ();
+  size_t k = fn ? strlen (fn) : 0;
+  if (k && strncmp (msg, fn, k) == 0 && msg[k] == ':' && msg[k + 1] == ' ')
+    return msg + k + 2;
+  return msg;
+}
+
+void
+symmex_err (const char *id, const char *fmt, ...)
+{
+  char msg[2048];
+  va_list ap;
+  va_start (ap, fmt);
+  vsnprintf (msg, sizeof msg, fmt, ap);
+  va_end (ap);
+  mexErrMsgIdAndTxt (id, "%s", without_own_prefix (msg));
+}
+
+void
+symmex_warn (const char *id, const char *fmt, ...)
+{
+  char msg[2048];
+  va_list ap;
+  va_start (ap, fmt);
+  vsnprintf (msg, sizeof msg, fmt, ap);
+  va_end (ap);
+  mexWarnMsgIdAndTxt (id, "%s", without_own_prefix (msg));
 }

@@ -7,6 +7,7 @@
    Octave frees it all when the call ends. */
 #include "symmex.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -39,6 +40,8 @@ typedef struct {
   int *ie;
   size_t nev, evcap;
   int output_stopped;
+  const char *nonfinite_what;  /* which function last returned NaN/Inf */
+  double nonfinite_t;          /* and at which t */
 } ctx_t;
 
 /* ------------------------------------------------------------ helpers */
@@ -52,8 +55,9 @@ col (int n)
 static const char *
 shape (const mxArray *a, char *buf, size_t len)
 {
-  snprintf (buf, len, "%dx%d %s", (int) mxGetM (a), (int) mxGetN (a),
-            mxGetClassName (a));
+  snprintf (buf, len, "%dx%d %s%s%s", (int) mxGetM (a), (int) mxGetN (a),
+            mxIsSparse (a) ? "sparse " : "",
+            mxIsComplex (a) ? "complex " : "", mxGetClassName (a));
   return buf;
 }
 
@@ -86,6 +90,22 @@ checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
   return mxGetPr (*pa);
 }
 
+/* The core finds NaN/Inf itself (and retries with a smaller step); this
+   only remembers which of the user's functions gave them, for the
+   warning when the run cannot go on. */
+static void
+note_nonfinite (ctx_t *c, const double *v, size_t k, const char *what,
+                double t)
+{
+  for (size_t i = 0; i < k; i++)
+    if (! isfinite (v[i]))
+      {
+        c->nonfinite_what = what;
+        c->nonfinite_t = t;
+        return;
+      }
+}
+
 /* ------------------------------------------------------------ callbacks */
 
 static int
@@ -99,6 +119,7 @@ cb_rhs (double t, const double *y, double *dy, void *user)
   char expect[64];
   snprintf (expect, sizeof expect, "a vector of %d real elements", c->n);
   const double *v = checked_values (c, out, c->n, "FCN", expect, t);
+  note_nonfinite (c, v, c->n, "FCN", t);
   memcpy (dy, v, sizeof (double) * c->n);
   mxDestroyArray (out[0]);
   return 0;
@@ -133,8 +154,12 @@ cb_rhs_batch (int k, const double *t, const double *y, double *dy,
   char expect[96];
   snprintf (expect, sizeof expect, "a %dx%d real matrix (Vectorized)", c->n,
             k);
+  if (out[0] && (mxGetM (out[0]) != (size_t) c->n
+                 || mxGetN (out[0]) != (size_t) k))
+    checked_values (c, out, (size_t) -1, "FCN", expect, t[0]);  /* fails */
   const double *v = checked_values (c, out, (size_t) c->n * k, "FCN",
                                     expect, t[0]);
+  note_nonfinite (c, v, (size_t) c->n * k, "FCN", t[0]);
   memcpy (dy, v, sizeof (double) * c->n * k);
   mxDestroyArray (out[0]);
   return 0;
@@ -184,6 +209,7 @@ cb_jac (double t, const double *y, double *df, void *user)
                         expect, t);
       const double *v = checked_values (c, out, (size_t) n * n,
                                         "the Jacobian function", expect, t);
+      note_nonfinite (c, v, (size_t) n * n, "the Jacobian function", t);
       memcpy (df, v, sizeof (double) * n * n);
     }
   else
@@ -195,6 +221,10 @@ cb_jac (double t, const double *y, double *df, void *user)
                           c->jac_source == JAC_FCN2 ? "FCN (second output)"
                                                     : "HamiltonianHessFcn",
                           expect, t);
+      note_nonfinite (c, v, (size_t) n * n,
+                      c->jac_source == JAC_FCN2
+                      ? "FCN's second output (the Hessian)"
+                      : "HamiltonianHessFcn", t);
       hess_to_df (c->d, v, df);
     }
   mxDestroyArray (out[0]);
@@ -210,6 +240,11 @@ cb_events (double t, const double *y, double *value, int *isterminal,
   memcpy (mxGetPr (c->eargs[2]), y, sizeof (double) * c->n);
   mxArray *out[3] = { NULL, NULL, NULL };
   mexCallMATLAB (3, out, c->nargs, c->eargs, "feval");
+  if (! out[1] || ! out[2])
+    mexErrMsgIdAndTxt (BADARG, "%s: the Events function must return three "
+                       "outputs [VALUE, ISTERMINAL, DIRECTION], got %d at "
+                       "t = %.17g", c->solver, out[0] ? (out[1] ? 2 : 1) : 0,
+                       t);
   char expect[96];
   snprintf (expect, sizeof expect, "%d real values", c->nevents);
   const double *v = checked_values (c, &out[0], c->nevents,
@@ -422,7 +457,8 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   if (! is_plain_numeric (ts) || mxGetNumberOfElements (ts) < 2
       || (mxGetM (ts) != 1 && mxGetN (ts) != 1))
     mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be a real vector [T0, TF] or "
-                       "[T0, T1, ..., TF] of at least 2 elements", name);
+                       "[T0, T1, ..., TF] of at least 2 elements, got %s",
+                       name, shape (ts, buf, sizeof buf));
   mxArray *tsd = mxIsDouble (ts) ? NULL : to_double (ts);
   const double *tspan = mxGetPr (tsd ? tsd : ts);
   int ntspan = (int) mxGetNumberOfElements (ts);
@@ -434,8 +470,12 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   for (int i = 1; i < ntspan; i++)
     if (! (dir * (tspan[i] - tspan[i - 1]) > 0))
       mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be strictly monotonic "
-                         "(elements %d and %d are %g and %g)", name, i,
+                         "(elements %d and %d are %.17g and %.17g)", name, i,
                          i + 1, tspan[i - 1], tspan[i]);
+  if (! isfinite (tspan[ntspan - 1] - tspan[0]))
+    mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must span a finite interval, "
+                       "TF - T0 = %g - (%g) overflows", name,
+                       tspan[ntspan - 1], tspan[0]);
 
   /* Y0 */
   const mxArray *y0a = prhs[2];
@@ -464,6 +504,34 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   symmex_opts o;
   symmex_parse_options (name, nrhs > 3 ? prhs[3] : NULL, n, solver->is_spvi,
                         &o);
+
+  /* fixed steps: a number of steps that fits a long, and steps that move
+     t (the core computes t0 + k*h) */
+  if (o.h_fixed > 0 || o.nsteps_fixed > 0)
+    {
+      double t0 = tspan[0], t1 = tspan[ntspan - 1];
+      double span = fabs (t1 - t0);
+      double h = o.h_fixed > 0 ? o.h_fixed : span / o.nsteps_fixed;
+      double tmax = fmax (fabs (t0), fabs (t1));
+      if (o.h_fixed > 0 && o.nsteps_fixed > 0)
+        {
+          double tend = t0 + dir * h * (double) o.nsteps_fixed;
+          if (! isfinite (tend))
+            mexErrMsgIdAndTxt (BADARG, "%s: TimeStepNumber*TimeStepSize = "
+                               "%ld*%g overflows; expected a finite end "
+                               "time", name, o.nsteps_fixed, h);
+          tmax = fmax (tmax, fabs (tend));
+        }
+      else if (o.h_fixed > 0 && span / h > 1e12)
+        mexErrMsgIdAndTxt (BADARG, "%s: TimeStepSize = %g needs %.3g steps "
+                           "to cover TSPAN, more than the 1e12 allowed; "
+                           "expected TimeStepSize >= %g", name, h, span / h,
+                           span / 1e12);
+      if (h < 8 * DBL_EPSILON * tmax)
+        mexErrMsgIdAndTxt (BADARG, "%s: the fixed step %g is below the "
+                           "round-off of t (|t| up to %g); expected a step "
+                           ">= %g", name, h, tmax, 8 * DBL_EPSILON * tmax);
+    }
 
   /* the context and the reused argument arrays of feval */
   ctx_t *c = mxCalloc (1, sizeof (ctx_t));
@@ -558,11 +626,17 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
       memcpy (mxGetPr (c->eargs[2]), y0, sizeof (double) * n);
       mxArray *eo[3] = { NULL, NULL, NULL };
       mexCallMATLAB (3, eo, c->nargs, c->eargs, "feval");
+      if (! eo[1] || ! eo[2])
+        mexErrMsgIdAndTxt (BADARG, "%s: the Events function must return "
+                           "three outputs [VALUE, ISTERMINAL, DIRECTION], "
+                           "got %d", name, eo[0] ? (eo[1] ? 2 : 1) : 0);
       if (! eo[0] || ! (mxIsNumeric (eo[0]) || mxIsLogical (eo[0]))
           || mxIsEmpty (eo[0]) || mxIsComplex (eo[0]))
         mexErrMsgIdAndTxt (BADARG, "%s: the Events function must return "
                            "[VALUE, ISTERMINAL, DIRECTION] with a non-empty "
-                           "real VALUE", name);
+                           "real VALUE, got VALUE = %s", name,
+                           eo[0] ? shape (eo[0], buf, sizeof buf)
+                           : "nothing");
       c->nevents = (int) mxGetNumberOfElements (eo[0]);
       for (int k = 0; k < 3; k++)
         mxDestroyArray (eo[k]);
@@ -660,19 +734,27 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                           "there", name, tlast);
       break;
     case SYM_ENEWTON:
-      mexWarnMsgIdAndTxt ("symplectic:newton-failed", "%s: Newton's method "
-                          "did not converge at t = %.17g %s; returning the "
-                          "solution up to t = %.17g", name, treached,
-                          (o.h_fixed > 0 || o.nsteps_fixed > 0)
-                          ? "with the fixed step (try a smaller "
-                            "TimeStepSize)"
-                          : "even with the smallest step", tlast);
+      {
+        /* a NaN/Inf matrix also ends as a Newton failure: say so */
+        char why[160] = "";
+        if (c->nonfinite_what && strcmp (c->nonfinite_what, "FCN") != 0)
+          snprintf (why, sizeof why, " (%s returned NaN or Inf at "
+                    "t = %.17g)", c->nonfinite_what, c->nonfinite_t);
+        mexWarnMsgIdAndTxt ("symplectic:newton-failed", "%s: Newton's "
+                            "method did not converge at t = %.17g %s%s; "
+                            "returning the solution up to t = %.17g", name,
+                            treached, (o.h_fixed > 0 || o.nsteps_fixed > 0)
+                            ? "with the fixed step (try a smaller "
+                              "TimeStepSize)"
+                            : "even with the smallest step", why, tlast);
+      }
       break;
     case SYM_ENONFINITE:
-      mexWarnMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned NaN or "
+      mexWarnMsgIdAndTxt ("symplectic:nonfinite", "%s: %s returned NaN or "
                           "Inf near t = %.17g and a smaller step did not "
                           "help; returning the solution up to t = %.17g",
-                          name, sys.fail_t, tlast);
+                          name, c->nonfinite_what ? c->nonfinite_what
+                          : "FCN", sys.fail_t, tlast);
       break;
     case SYM_ESTEPSIZE:
       mexWarnMsgIdAndTxt ("symplectic:step-size", "%s: the step size became "
@@ -758,7 +840,20 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
       if (solver->is_spvi)
         {
           int nq = o.q_dofs, m = o.nodes;
+          /* the order actually used: adaptive runs advance with the
+             (n+1, m+1) companion of the error estimate */
+          int adaptive = ! (o.h_fixed > 0 || o.nsteps_fixed > 0);
+          if (adaptive)
+            {
+              nq++;
+              m++;
+            }
           int ord = 2 * (nq - 1 < 2 * m - nq + 1 ? nq - 1 : 2 * m - nq + 1);
+          if (adaptive)
+            {
+              nq--;
+              m--;
+            }
           mxSetField (s, 0, "order", mxCreateDoubleScalar (ord));
           mxSetField (s, 0, "Q_DoFs", mxCreateDoubleScalar (nq));
           mxSetField (s, 0, "Nodes", mxCreateDoubleScalar (m));

@@ -53,4 +53,17 @@ void symmex_parse_options (const char *solver, const mxArray *opts, int n,
 /* Is a a function handle, or the name of a function? */
 int symmex_is_function (const mxArray *a);
 
+/* Octave's mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt put "NAME: " (the
+   running MEX function's name) in front of every message, and ours already
+   begin with the solver's name ("odeSPVI: Y0 must ..."): the user would see
+   it twice.  These wrappers (options.c) format the message, drop that
+   leading "NAME: " and pass the rest on, so it appears once.  Every
+   mexErrMsgIdAndTxt/mexWarnMsgIdAndTxt of the MEX layer goes through them. */
+void symmex_err (const char *id, const char *fmt, ...);
+void symmex_warn (const char *id, const char *fmt, ...);
+#ifndef SYMMEX_NO_REDIRECT
+#define mexErrMsgIdAndTxt symmex_err
+#define mexWarnMsgIdAndTxt symmex_warn
+#endif
+
 #endif

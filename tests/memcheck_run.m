@@ -1,0 +1,146 @@
+## -*- texinfo -*-
+## @deftypefn {} {@var{status} =} memcheck_run ()
+## The workload of @code{make check-memory} (tests/check_memory.sh): a
+## short tour of odeSE, odeSV and odeSPVI meant to run under valgrind, so
+## that every code path of the MEX layer and of the core that a user can
+## reach is executed at least once: adaptive and fixed steps, output times,
+## Refine, the sol struct, events, OutputFcn/OutputSel, every Jacobian
+## source, Vectorized, Separable, backwards, Stats; bad inputs (errors
+## raised in the MEX layer), errors thrown by the user's functions in the
+## middle of a run, NaN from FCN, Newton and MaxSteps failures (warnings
+## with partial results).  Returns 0 if all results were as expected, 1
+## otherwise (valgrind's own findings are judged by check_memory.sh).
+## Not a test_*.m file: the test runner does not run it.
+## @end deftypefn
+
+function status = memcheck_run ()
+
+  nbad = 0;
+  warning ("off", "all");
+  osc = @(t, y) [y(2); -y(1)];
+  kep = @(t, y) [y(3:4); -y(1:2) / norm(y(1:2))^3];
+  y0k = [0.4; 0; 0; 2];
+  solvers = {@odeSE, @odeSV, @odeSPVI};
+
+  for i = 1:3
+    s = solvers{i};
+    name = func2str (s);
+    ## adaptive, fixed, output times, Refine, backwards, sol
+    [t, y] = s (osc, [0 1], [1 0]);
+    nbad += check (abs (y(end,1) - cos (1)) < 5e-2, name, "adaptive");
+    [t, y] = s (osc, [0 1], [1 0], struct ("TimeStepSize", 0.1));
+    nbad += check (numel (t) == 11, name, "fixed");
+    [t, y] = s (osc, [0 1], [1 0], struct ("TimeStepSize", 0.1, "TimeStepNumber", 4));
+    nbad += check (numel (t) == 5, name, "fixed N");
+    [t, y] = s (kep, linspace (0, 2, 7), y0k, struct ("RelTol", 1e-6, "AbsTol", [1 1 1 1] * 1e-8));
+    nbad += check (numel (t) == 7, name, "tspan times");
+    [t, y] = s (kep, [0 1], y0k, struct ("Refine", 4, "NormControl", "on"));
+    nbad += check (numel (t) > 4, name, "refine");
+    [t, y] = s (osc, [1 0], [1 0]);
+    nbad += check (t(end) == 0, name, "backwards");
+    sol = s (osc, [0 1], [1 0]);
+    nbad += check (isstruct (sol) && numel (sol.x) == columns (sol.y), name, "sol");
+    ## Jacobian sources
+    [t, y] = s (osc, [0 1], [1 0], struct ("Jacobian", [0 1; -1 0]));
+    [t, y] = s (osc, [0 1], [1 0], struct ("Jacobian", @(t, y) [0 1; -1 0]));
+    [t, y] = s (osc, [0 1], [1 0], struct ("HamiltonianHessFcn", @(t, y) eye (2)));
+    [t, y] = s (@mc_hess2, [0 1], [1 0]);
+    [t, y] = s (kep, [0 1], y0k, struct ("Separable", "on", "TimeStepSize", 0.05));
+    [t, y] = s (@(t, y) [y(2,:); -y(1,:)], [0 1], [1 0], struct ("Vectorized", "on"));
+    nbad += check (abs (y(end,1) - cos (1)) < 5e-2, name, "vectorized");
+    ## events, OutputFcn, OutputSel, Stats
+    ev = @(t, y) deal ([y(1); y(2)], [0; 1], [0; -1]);
+    [t, y, te, ye, ie] = s (osc, [0 8], [1 0], struct ("Events", ev));
+    nbad += check (numel (te) >= 1 && abs (t(end) - 2*pi) < 0.1, name, "events");
+    ev2 = @(t, y) deal (t - 0.5 + 1e-3 * (1:70)', zeros (70, 1), 0);
+    [t, y, te] = s (osc, [0 1], [1 0], struct ("Events", ev2, "TimeStepSize", 0.1));
+    nbad += check (numel (te) >= 64, name, "70 events in one step");
+    nrows = 0;
+    out = @(t, y, flag) false;
+    [t, y] = s (osc, [0 1], [1 0], struct ("OutputFcn", out, "OutputSel", 2));
+    [t, y] = s (osc, [0 1], [1 0], struct ("OutputFcn", @(t, y, flag) ! isempty (t) && t(end) > 0.5));
+    nbad += check (t(end) < 1, name, "OutputFcn stop");
+    evalc ("[t, y] = s (osc, [0 1], [1 0], struct ('Stats', 'on'));");
+    ## extra parameters
+    [t, y] = s (@(t, y, a, b) a * [y(2); -y(1)] + b, [0 1], [1 0], [], 1, 0);
+    ## run-time failures: warnings and partial results
+    lastwarn ("");
+    [t, y] = s (@(t, y) [y(2); -y(1)] ./ (t <= 0.5), [0 1], [1 0]);
+    nbad += check (t(end) <= 0.51 && all (isfinite (y(:))), name, "NaN after 0.5");
+    [t, y] = s (@(t, y) [y(2); -y(1)] ./ (t <= 0.5), [0 1], [1 0], struct ("TimeStepSize", 0.01));
+    nbad += check (t(end) <= 0.51 && all (isfinite (y(:))), name, "NaN after 0.5, fixed");
+    [t, y] = s (osc, [0 100], [1 0], struct ("MaxSteps", 5));
+    nbad += check (numel (t) == 6, name, "MaxSteps");
+    [t, y] = s (@(t, y) [y(2); -1e3 * y(1)^3], [0 10], [10 0], struct ("TimeStepSize", 1));
+    ## errors: bad arguments, and the user's own errors in mid-run
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 2 3]);
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 NaN], [1 0]);
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("RelTol", -1));
+    nbad += expect_error (s, "Octave:invalid-input-arg", @(t, y) [1; 2; 3], [0 1], [1 0]);
+    nbad += expect_error (s, "Octave:invalid-input-arg", @(t, y) [y(2); -y(1)] + (t > 0.5) * 1i, [0 1], [1 0]);
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("Jacobian", @(t, y) ones (3)));
+    nbad += expect_error (s, "mc:fcn", @(t, y) mc_fail_after (t, y, 0.5), [0 1], [1 0]);
+    nbad += expect_error (s, "mc:fcn", @(t, y) mc_fail_after (t, y, 0.5), [0 1], [1 0], struct ("TimeStepSize", 0.01, "Refine", 2));
+    nbad += expect_error (s, "mc:ev", osc, [0 1], [1 0], struct ("Events", @(t, y) mc_ev_fail (t, y)));
+    nbad += expect_error (s, "mc:out", osc, [0 1], [1 0], struct ("OutputFcn", @(t, y, f) mc_out_fail (t, y, f)));
+    nbad += expect_error (s, "mc:hess", osc, [0 1], [1 0], struct ("HamiltonianHessFcn", @(t, y) error ("mc:hess", "x")));
+  endfor
+  ## odeSPVI's own options
+  nbad += expect_error (@odeSPVI, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("Q_DoFs", 9, "Nodes", 2));
+  for q = [2 3 5]
+    [t, y] = odeSPVI (kep, [0 1], y0k, struct ("Q_DoFs", q, "Nodes", 3));
+  endfor
+  [t, y] = odeSPVI (kep, [0 1], y0k, struct ("PolynomialDegree", 6, "TimeStepSize", 0.1));
+  nbad += check (numel (t) == 11, "odeSPVI", "PolynomialDegree");
+
+  printf ("memcheck_run: %d unexpected results\n", nbad);
+  status = double (nbad > 0);
+
+endfunction
+
+function bad = check (ok, name, what)
+  bad = ! ok;
+  if (bad)
+    printf ("memcheck_run: %s: unexpected result (%s)\n", name, what);
+  endif
+endfunction
+
+function bad = expect_error (s, id, varargin)
+  bad = 1;
+  try
+    [t, y] = s (varargin{:});
+    printf ("memcheck_run: %s: no error, expected %s\n", func2str (s), id);
+  catch err
+    bad = ! strcmp (err.identifier, id);
+    if (bad)
+      printf ("memcheck_run: %s: error %s (%s), expected %s\n", func2str (s),
+              err.identifier, err.message, id);
+    endif
+  end_try_catch
+endfunction
+
+function [dy, h] = mc_hess2 (t, y)
+  dy = [y(2); -y(1)];
+  h = eye (2);
+endfunction
+
+function dy = mc_fail_after (t, y, tf)
+  if (t > tf)
+    error ("mc:fcn", "failing at t = %g", t);
+  endif
+  dy = [y(2); -y(1)];
+endfunction
+
+function [v, term, dir] = mc_ev_fail (t, y)
+  if (t > 0.3)
+    error ("mc:ev", "event failing at t = %g", t);
+  endif
+  v = y(1);  term = 0;  dir = 0;
+endfunction
+
+function stop = mc_out_fail (t, y, flag)
+  if (strcmp (flag, "") && t(end) > 0.3)
+    error ("mc:out", "output failing");
+  endif
+  stop = false;
+endfunction

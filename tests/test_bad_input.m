@@ -1,0 +1,315 @@
+## Every bad input gets a clear error (SPEC.md section 2): its message
+## begins with the solver's name (once), says what is wrong and what is
+## expected, and it has an identifier: "Octave:invalid-input-arg" for bad
+## arguments and options, "Octave:invalid-fun-call" for a wrong number of
+## arguments, "symplectic:..." for run-time failures; an error thrown by
+## one of the user's functions reaches the user with its own identifier
+## and message.  Each check_bad call below is one case, run for each
+## solver it names.
+
+## check_bad (SOLVERS, ID, PAT, FCN, TSPAN, Y0, ...): each solver in the
+## cell SOLVERS, called as [t, y] = solver (FCN, TSPAN, Y0, ...), must
+## raise an error with identifier ID whose message matches
+## "^<solver>: PAT" (PAT a regular expression).  With ID an identifier of
+## the user's own (PAT then begins with "^"), the message must match PAT
+## as the user's function (or Octave, for it) wrote it.
+%!function check_bad (solvers, id, pat, varargin)
+%!  if (! iscell (solvers))
+%!    solvers = {solvers};
+%!  endif
+%!  own = isempty (pat) || pat(1) != "^";
+%!  for i = 1:numel (solvers)
+%!    name = func2str (solvers{i});
+%!    raised = false;
+%!    try
+%!      [t, y] = solvers{i} (varargin{:});
+%!    catch err
+%!      raised = true;
+%!    end_try_catch
+%!    if (! raised)
+%!      error ("%s: no error, expected [%s] %s", name, id, pat);
+%!    endif
+%!    if (! strcmp (err.identifier, id))
+%!      error ("%s: identifier '%s', expected '%s' (message: %s)", name,
+%!             err.identifier, id, err.message);
+%!    endif
+%!    if (own)
+%!      full = ['^' name ': ' pat];
+%!      if (numel (strfind (err.message, [name ":"])) != 1)
+%!        error ("%s: the solver's name should appear once: %s", name,
+%!               err.message);
+%!      endif
+%!    else
+%!      full = pat;
+%!    endif
+%!    if (isempty (regexp (err.message, full, "once")))
+%!      error ("%s: message '%s' does not match '%s'", name, err.message,
+%!             full);
+%!    endif
+%!  endfor
+%!endfunction
+
+%!function dy = bi_osc (t, y)
+%!  dy = [y(2); -y(1)];
+%!endfunction
+
+## FCN misbehaving from t = 0.5 on (KIND selects how)
+%!function dy = bi_late (t, y, kind)
+%!  dy = [y(2); -y(1)];
+%!  if (t > 0.5)
+%!    switch (kind)
+%!      case "size",    dy = [dy; 0];
+%!      case "complex", dy(2) += 1i;
+%!      case "char",    dy = "ab";
+%!      case "error",   error ("mytest:late", "my late failure at t = %g", t);
+%!    endswitch
+%!  endif
+%!endfunction
+
+%!function bi_noout (t, y)
+%!endfunction
+
+%!function [dy, h] = bi_hess2 (t, y, h)
+%!  dy = [y(2); -y(1)];
+%!endfunction
+
+%!function [v, term, direction] = bi_events (t, y, kind)
+%!  v = y(1);  term = 0;  direction = 0;
+%!  switch (kind)
+%!    case "empty",   v = [];
+%!    case "complex", v = 1i;
+%!    case "char",    v = "a";
+%!    case "term",    term = [1 1 1];
+%!    case "dir",     direction = {1};
+%!    case "grow",    v = y(1) * ones (1 + (t > 0.5), 1);
+%!    case "error",   error ("mytest:event", "my event failure");
+%!  endswitch
+%!endfunction
+
+%!function v = bi_events1 (t, y)
+%!  v = y(1);
+%!endfunction
+
+%!shared all3, f, y0, spvi
+%! all3 = {@odeSE, @odeSV, @odeSPVI};
+%! spvi = {@odeSPVI};
+%! f = @bi_osc;
+%! y0 = [1 0];
+
+## ------------------------------------------------------------ calling forms
+%!test
+%! for s = all3
+%!   try
+%!     s{1} ();
+%!     error ("no error");
+%!   catch err
+%!     assert (err.identifier, "Octave:invalid-fun-call");
+%!     assert (regexp (err.message, ['^' func2str(s{1}) ': expected .*got 0 arguments']));
+%!   end_try_catch
+%! endfor
+%!test check_bad (all3, "Octave:invalid-fun-call", "expected .*got 1 arguments", f);
+%!test check_bad (all3, "Octave:invalid-fun-call", "expected .*got 2 arguments", f, [0 1]);
+%!test
+%! for s = all3
+%!   try
+%!     [a, b, c, d, e, g] = s{1} (f, [0 1], y0);
+%!     error ("no error");
+%!   catch err
+%!     assert (err.identifier, "Octave:invalid-fun-call");
+%!     assert (regexp (err.message, ['^' func2str(s{1}) ': at most 5 outputs']));
+%!   end_try_catch
+%! endfor
+
+## ------------------------------------------------------------ FCN
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle or the name of a function, got 1x1 double", 1, [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle .*got 0x0 double", [], [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle .*got 1x1 cell", {f}, [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle .*got 1x1 struct", struct ("f", f), [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle .*got 1x1 logical", true, [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle or the name of a function, got 1x22 char", "no_such_function_xyz_1", [0 1], y0);
+
+## ------------------------------------------------------------ TSPAN
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*of at least 2 elements, got 1x1 double", f, 0, y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*of at least 2 elements, got 0x0 double", f, [], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be strictly monotonic \\(elements 1 and 2 are 0 and 0\\)", f, [0 0], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be strictly monotonic \\(elements 2 and 3 are 1 and 1\\)", f, [0 1 1 2], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be strictly monotonic \\(elements 2 and 3 are 1 and 0.5\\)", f, [0 1 0.5], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be strictly monotonic", f, [1 0 0.5], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be finite, element 2 is nan", f, [0 NaN], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be finite, element 2 is inf", f, [0 Inf], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be finite, element 1 is -inf", f, [-Inf 0], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 complex double", f, [0 1i], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 char", f, "ab", y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 cell", f, {0, 1}, y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 2x2 double", f, [0 1; 2 3], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 sparse double", f, sparse ([0 1]), y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 logical", f, [false true], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must span a finite interval", f, [-realmax realmax], y0);
+
+## ------------------------------------------------------------ Y0
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector \\[q0; p0\\], got 0x0 double", f, [0 1], []);
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty .*got 1x0 double", f, [0 1], zeros (1, 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must have an even number of elements \\[q; p\\], got 3", f, [0 1], [1 2 3]);
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must have an even number of elements \\[q; p\\], got 1", f, [0 1], 1);
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be real, got a complex value", f, [0 1], [1+2i 0]);
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x2 logical", f, [0 1], [true false]);
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x2 char", f, [0 1], "ab");
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x2 cell", f, [0 1], {1, 0});
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x1 struct", f, [0 1], struct ("q", 1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x2 sparse double", f, [0 1], sparse ([1 0]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 2x2 double", f, [0 1], eye (2));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be finite, element 1 is nan", f, [0 1], [NaN 0]);
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be finite, element 2 is inf", f, [0 1], [0 Inf]);
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be finite, element 4 is -inf", f, [0 1], [0 0 0 -Inf]);
+
+## ------------------------------------------------------------ what FCN returns
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 3x1 double at t = 0$", @(t, y) [1; 2; 3], [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 0x0 double at t = 0", @(t, y) [], [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 1x2 char at t = 0", @(t, y) "ab", [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 1x2 cell at t = 0", @(t, y) {1, 2}, [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 1x1 struct at t = 0", @(t, y) struct (), [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 2x1 sparse double at t = 0", @(t, y) sparse ([1; 2]), [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN returned a complex value at t = 0; expected a vector of 2 real elements", @(t, y) [1i; 2], [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN returned a complex value at t = 2; expected", @(t, y) [1i; 2], [2 3], y0);
+%!test check_bad (all3, "symplectic:nonfinite", "FCN returned nan \\(element 1\\) at t = 0, the initial point", @(t, y) [NaN; 2], [0 1], y0);
+%!test check_bad (all3, "symplectic:nonfinite", "FCN returned inf \\(element 2\\) at t = 0, the initial point", @(t, y) [1; Inf], [0 1], y0);
+%!test check_bad (all3, "symplectic:nonfinite", "FCN returned -inf \\(element 2\\) at t = -1, the initial point", @(t, y) [1; -Inf], [-1 1], y0);
+## ... or misbehaving later: the message says at which t
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 3x1 double at t = 0\\.[5-9]", @(t, y) bi_late (t, y, "size"), [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN returned a complex value at t = 0\\.[5-9]", @(t, y) bi_late (t, y, "complex"), [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return .*got 1x2 char at t = 0\\.[5-9]", @(t, y) bi_late (t, y, "char"), [0 1], y0, struct ("TimeStepSize", 0.1));
+## (odeSPVI evaluates its nodes in one call)
+%!test check_bad (spvi, "Octave:invalid-input-arg", "FCN must return a 2x[0-9]+ real matrix \\(Vectorized\\), got 2x1 double at t = ", f, [0 1], y0, struct ("Vectorized", "on"));
+
+## ------------------------------------------------------------ errors of the user's functions
+%!test check_bad (all3, "mytest:boom", "^my failure 42$", @(t, y) error ("mytest:boom", "my failure %d", 42), [0 1], y0);
+%!test check_bad (all3, "mytest:late", "^my late failure at t = 0\\.[5-9]", @(t, y) bi_late (t, y, "error"), [0 1], y0);
+%!test check_bad (all3, "mytest:late", "^my late failure", @(t, y) bi_late (t, y, "error"), [0 1], y0, struct ("TimeStepSize", 0.01));
+%!test check_bad (all3, "", "^an error without identifier$", @(t, y) error ("an error without identifier"), [0 1], y0);
+%!test check_bad (all3, "Octave:index-out-of-bounds", "^index \\(7\\): out of bound|^y\\(7\\): out of bound", @(t, y) [y(2); y(7)], [0 1], y0);
+%!test check_bad (all3, "Octave:undefined-function", "^'undefined_thing_xyz' undefined", @(t, y) [y(2); undefined_thing_xyz], [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-fun-call", "^bi_noout: function called with too many outputs", @bi_noout, [0 1], y0);
+%!test check_bad (all3, "mytest:extra", "^extra parameter 7$", @(t, y, a) error ("mytest:extra", "extra parameter %d", a), [0 1], y0, [], 7);
+%!test check_bad (all3, "mytest:jac", "^my Jacobian failure$", f, [0 1], y0, struct ("Jacobian", @(t, y) error ("mytest:jac", "my Jacobian failure")));
+%!test check_bad (all3, "mytest:hess", "^my Hessian failure$", f, [0 1], y0, struct ("HamiltonianHessFcn", @(t, y) error ("mytest:hess", "my Hessian failure")));
+%!test check_bad (all3, "mytest:event", "^my event failure$", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "error")));
+%!test check_bad (all3, "mytest:output", "^my output failure$", f, [0 1], y0, struct ("OutputFcn", @(t, y, flag) error ("mytest:output", "my output failure")));
+
+## ------------------------------------------------------------ Jacobian and Hessian
+%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be a function handle or a full real 2x2 matrix \\(df/dy\\), got 3x3 double", f, [0 1], y0, struct ("Jacobian", ones (3)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 2x2 sparse double", f, [0 1], y0, struct ("Jacobian", speye (2)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 2x2 complex double", f, [0 1], y0, struct ("Jacobian", 1i * eye (2)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 1x22 char", f, [0 1], y0, struct ("Jacobian", "no_such_function_xyz_2"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Jacobian matrix must be finite, element 4 is nan", f, [0 1], y0, struct ("Jacobian", [0 1; -1 NaN]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Jacobian function must return a 2x2 real matrix \\(df/dy\\), got 3x3 double at t = ", f, [0 1], y0, struct ("Jacobian", @(t, y) ones (3)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Jacobian function must return a 2x2 real matrix \\(df/dy\\), got 1x4 double at t = ", f, [0 1], y0, struct ("Jacobian", @(t, y) ones (1, 4)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "HamiltonianHessFcn must return the Hessian of H, a 2x2 matrix or a vector of 4 elements, got 3x3 double at t = ", f, [0 1], y0, struct ("HamiltonianHessFcn", @(t, y) ones (3)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "HamiltonianHessFcn returned a complex value at t = ", f, [0 1], y0, struct ("HamiltonianHessFcn", @(t, y) 1i * eye (2)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "HamiltonianHessFcn must be a function handle or the name of a function, got 1x1 double", f, [0 1], y0, struct ("HamiltonianHessFcn", 5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN \\(second output\\) must return the Hessian of H: 2x2 or 4 elements, got 3x3 double at t = 0", @(t, y) bi_hess2 (t, y, ones (3)), [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN \\(second output\\) must return .*got 1x1 cell at t = 0", @(t, y) bi_hess2 (t, y, {1}), [0 1], y0);
+
+## ------------------------------------------------------------ OPTS
+%!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct from odeset or symplecticset \\(or a plain 1x1 struct\\), got 1x1 double", f, [0 1], y0, 5);
+%!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct .*got 1x6 char", f, [0 1], y0, "RelTol");
+%!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct .*got 1x2 struct", f, [0 1], y0, struct ("RelTol", {1e-3, 1e-4}));
+%!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive finite scalar, got -1", f, [0 1], y0, struct ("RelTol", -1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive finite scalar, got 0", f, [0 1], y0, struct ("RelTol", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive finite scalar, got nan", f, [0 1], y0, struct ("RelTol", NaN));
+%!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive finite scalar, got inf", f, [0 1], y0, struct ("RelTol", Inf));
+%!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive real scalar, got 1x1 char", f, [0 1], y0, struct ("RelTol", "a"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive real scalar, got 1x2 double", f, [0 1], y0, struct ("RelTol", [1 2]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive finite scalar, got -1", f, [0 1], y0, struct ("reltol", -1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be positive and finite, got -1", f, [0 1], y0, struct ("AbsTol", -1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be positive and finite, got 0", f, [0 1], y0, struct ("AbsTol", [1e-6 0]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be positive and finite, got nan", f, [0 1], y0, struct ("AbsTol", NaN));
+%!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be a positive scalar or a vector of 2 elements \\(numel \\(Y0\\)\\), got 1x3 double", f, [0 1], y0, struct ("AbsTol", [1 2 3]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be a positive scalar or a vector of 2 elements .*got 1x1 char", f, [0 1], y0, struct ("AbsTol", "a"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be a scalar when NormControl is \"on\"", f, [0 1], y0, struct ("AbsTol", [1 2], "NormControl", "on"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "MaxStep must be a positive scalar, got 0", f, [0 1], y0, struct ("MaxStep", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "MaxStep must be a positive scalar, got -1", f, [0 1], y0, struct ("MaxStep", -1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "MaxStep must be a positive scalar, got nan", f, [0 1], y0, struct ("MaxStep", NaN));
+%!test check_bad (all3, "Octave:invalid-input-arg", "MaxStep must be a positive real scalar, got 1x1 cell", f, [0 1], y0, struct ("MaxStep", {{1}}));
+%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive finite scalar, got -1", f, [0 1], y0, struct ("InitialStep", -1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive finite scalar, got 0", f, [0 1], y0, struct ("InitialStep", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive finite scalar, got 0", f, [0 1], y0, struct ("TimeStepSize", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive finite scalar, got -0.1", f, [0 1], y0, struct ("TimeStepSize", -0.1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive finite scalar, got nan", f, [0 1], y0, struct ("TimeStepSize", NaN));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive finite scalar, got inf", f, [0 1], y0, struct ("TimeStepSize", Inf));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive real scalar, got 1x2 double", f, [0 1], y0, struct ("TimeStepSize", [0.1 0.2]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive real scalar, got 1x1 logical", f, [0 1], y0, struct ("TimeStepSize", true));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize = 1e-300 needs 1e\\+300 steps to cover TSPAN, more than the 1e12 allowed", f, [0 1], y0, struct ("TimeStepSize", 1e-300));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the fixed step 1e-09 is below the round-off of t", f, [1e8 1e8+1], y0, struct ("TimeStepSize", 1e-9, "TimeStepNumber", 3));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepNumber\\*TimeStepSize = .* overflows", f, [0 1], y0, struct ("TimeStepSize", 1e300, "TimeStepNumber", 1e10));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepNumber must be between 1 and 1000000000000, got 0", f, [0 1], y0, struct ("TimeStepSize", 0.1, "TimeStepNumber", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepNumber must be between 1 and 1000000000000, got -3", f, [0 1], y0, struct ("TimeStepNumber", -3));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepNumber must be an integer, got 2.5", f, [0 1], y0, struct ("TimeStepSize", 0.1, "TimeStepNumber", 2.5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepNumber must be an integer, got inf", f, [0 1], y0, struct ("TimeStepNumber", Inf));
+%!test check_bad (all3, "Octave:invalid-input-arg", "MaxSteps must be between 1 and .*, got 0", f, [0 1], y0, struct ("MaxSteps", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "MaxSteps must be an integer, got 1.5", f, [0 1], y0, struct ("MaxSteps", 1.5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "NewtonTol must be a positive finite scalar, got 0", f, [0 1], y0, struct ("NewtonTol", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "NewtonTol must be below 1 \\(it is relative to the size of y\\), got 1$", f, [0 1], y0, struct ("NewtonTol", 1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "NewtonTol must be below 1 .*got 1e\\+300", f, [0 1], y0, struct ("NewtonTol", 1e300));
+%!test check_bad (all3, "Octave:invalid-input-arg", "MaxNewtonIterations must be between 1 and 1000, got 0", f, [0 1], y0, struct ("MaxNewtonIterations", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Refine must be between 1 and .*, got 0", f, [0 1], y0, struct ("Refine", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Refine must be an integer, got 2.5", f, [0 1], y0, struct ("Refine", 2.5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "NormControl must be \"on\" or \"off\", got 1x5 char", f, [0 1], y0, struct ("NormControl", "maybe"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Stats must be \"on\" or \"off\", got 1x1 complex double", f, [0 1], y0, struct ("Stats", 5i));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Separable must be \"on\" or \"off\", got 1x1 char", f, [0 1], y0, struct ("Separable", "x"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Vectorized must be \"on\" or \"off\", got 1x2 double", f, [0 1], y0, struct ("Vectorized", [1 1]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold indices between 1 and 2, got 0", f, [0 1], y0, struct ("OutputSel", [0 1]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold indices between 1 and 2, got 1.5", f, [0 1], y0, struct ("OutputSel", 1.5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold indices between 1 and 2, got 5", f, [0 1], y0, struct ("OutputSel", 5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must be a vector of indices into Y0, got 1x1 cell", f, [0 1], y0, struct ("OutputSel", {{1}}));
+%!test check_bad (all3, "Octave:invalid-input-arg", "a logical OutputSel must have 2 elements", f, [0 1], y0, struct ("OutputSel", true));
+
+## ------------------------------------------------------------ Events and OutputFcn
+%!test check_bad (all3, "Octave:invalid-input-arg", "Events must be a function handle or the name of a function, got 1x1 double", f, [0 1], y0, struct ("Events", 3));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Events must be a function handle .*got 1x22 char", f, [0 1], y0, struct ("Events", "no_such_function_xyz_3"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must be a function handle or the name of a function, got 1x1 double", f, [0 1], y0, struct ("OutputFcn", 3));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must be a function handle .*got 1x22 char", f, [0 1], y0, struct ("OutputFcn", "no_such_function_xyz_4"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must be a function handle .*got 1x1 cell", f, [0 1], y0, struct ("OutputFcn", {{@odeplot}}));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return three outputs \\[VALUE, ISTERMINAL, DIRECTION\\], got 1", f, [0 1], y0, struct ("Events", @(t, y) y(1)));
+%!test check_bad (all3, "Octave:invalid-fun-call", "^bi_events1: function called with too many outputs", f, [0 1], y0, struct ("Events", @bi_events1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return \\[VALUE, ISTERMINAL, DIRECTION\\] with a non-empty real VALUE, got VALUE = 0x0 double", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "empty")));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return .*got VALUE = 1x1 complex double", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "complex")));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return .*got VALUE = 1x1 char", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "char")));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return ISTERMINAL and DIRECTION of the size of VALUE, got 1x3 double at t = 0", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "term")));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return ISTERMINAL and DIRECTION .*got 1x1 cell at t = 0", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "dir")));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return 1 real values, got 2x1 double at t = 0\\.[5-9]", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "grow")));
+
+## ------------------------------------------------------------ odeSPVI: Q_DoFs, Nodes
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be an integer, got 2.5", f, [0 1], y0, struct ("Q_DoFs", 2.5));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be between 2 and 41, got 1", f, [0 1], y0, struct ("Q_DoFs", 1));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be between 2 and 41, got -1", f, [0 1], y0, struct ("Q_DoFs", -1));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be between 2 and 41, got 42", f, [0 1], y0, struct ("Q_DoFs", 42, "Nodes", 40));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be an integer, got nan", f, [0 1], y0, struct ("Q_DoFs", NaN));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be an integer, got inf", f, [0 1], y0, struct ("Q_DoFs", Inf));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be an integer scalar, got 1x1 char", f, [0 1], y0, struct ("Q_DoFs", "a"));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be an integer scalar, got 1x2 double", f, [0 1], y0, struct ("Q_DoFs", [2 3]));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be an integer scalar, got 1x1 complex double", f, [0 1], y0, struct ("Q_DoFs", 2 + 1i));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Nodes must be between 1 and 40, got 0", f, [0 1], y0, struct ("Nodes", 0));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Nodes must be an integer, got 1.5", f, [0 1], y0, struct ("Nodes", 1.5));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Nodes must be between 1 and 40, got 100", f, [0 1], y0, struct ("Nodes", 100));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Nodes must be an integer scalar, got 1x1 logical", f, [0 1], y0, struct ("Nodes", true));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "P_DoFs must be between 1 and 40, got -1", f, [0 1], y0, struct ("P_DoFs", -1));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 7 with Nodes = 3 is a degenerate pair: .*Q_DoFs <= 2\\*Nodes", f, [0 1], y0, struct ("Q_DoFs", 7, "Nodes", 3));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 3 with Nodes = 1 is a degenerate pair", f, [0 1], y0, struct ("Q_DoFs", 3, "Nodes", 1));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 5 with Nodes = 2 is a degenerate pair", f, [0 1], y0, struct ("Q_DoFs", 5, "P_DoFs", 2));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be between 1 and 40, got 0", f, [0 1], y0, struct ("PolynomialDegree", 0));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be an integer, got 2.5", f, [0 1], y0, struct ("PolynomialDegree", 2.5));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 5 with Nodes = 2 is a degenerate pair", f, [0 1], y0, struct ("PolynomialDegree", 4, "Nodes", 2));
+
+## ------------------------------------------------------------ good inputs of unusual types work
+%!test
+%! for s = all3
+%!   [t, y] = s{1} (f, single ([0 1]), int8 ([1 0]));
+%!   assert (class (y), "double");
+%!   assert (y(end,1), cos (1), 5e-2);
+%!   [t, y] = s{1} (f, [0 1], [1 0], struct ("Jacobian", single ([0 1; -1 0])));
+%!   assert (y(end,1), cos (1), 5e-2);
+%!   [t, y] = s{1} (@(t, y) int32 ([0; 0]), [0 1], [1 0]);
+%!   assert (y(end,:), [1 0]);
+%!   [t, y] = s{1} (@(t, y) [false; false], [0 1], [1 0]);
+%!   assert (y(end,:), [1 0]);
+%! endfor

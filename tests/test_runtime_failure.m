@@ -1,0 +1,146 @@
+## When the integration cannot go on (FCN keeps returning NaN, Newton
+## diverges at the smallest or at the fixed step, the step size underflows,
+## MaxSteps is reached), the solvers warn with an identifier, as ode45
+## does, and RETURN every row computed up to there (SPEC.md section 2).
+
+## run_warn (SOLVER, ARGS...): [t, y, msg, id] of [t, y] = SOLVER (ARGS{:}),
+## with the warning it gave (its printout captured, to keep the log clean).
+%!function [t, y, msg, id] = run_warn (solver, varargin)
+%!  lastwarn ("");
+%!  t = y = [];
+%!  evalc ("[t, y] = solver (varargin{:});");
+%!  [msg, id] = lastwarn ();
+%!endfunction
+
+## the harmonic oscillator, whose FCN returns NaN from t = 1 on
+%!function dy = rf_nan_after_1 (t, y)
+%!  dy = [y(2); -y(1)];
+%!  if (t > 1)
+%!    dy(:) = NaN;
+%!  endif
+%!endfunction
+
+%!shared all3, osc
+%! all3 = {@odeSE, @odeSV, @odeSPVI};
+%! osc = @(t, y) [y(2); -y(1)];
+
+## NaN after t = 1: adaptive and fixed step, each solver
+%!test
+%! for s = all3
+%!   name = func2str (s{1});
+%!   for o = {struct(), struct("TimeStepSize", 0.01), ...
+%!            struct("TimeStepSize", 0.01, "Separable", "on")}
+%!     [t, y, msg, id] = run_warn (s{1}, @rf_nan_after_1, [0 3], [1 0], o{1});
+%!     assert (id, "symplectic:nonfinite");
+%!     assert (regexp (msg, ['^' name ': FCN returned NaN or Inf near t = 1(\.0|$| )']));
+%!     assert (regexp (msg, 'returning the solution up to t = '));
+%!     assert (all (isfinite (y(:))));
+%!     assert (columns (y), 2);
+%!     assert (rows (y), numel (t));
+%!     assert (t(1), 0);
+%!     assert (t(end) > 0.95 && t(end) <= 1.0101, sprintf ("%s: t(end) = %.17g", name, t(end)));
+%!     assert (all (diff (t) > 0));
+%!     ## what was returned is the solution (loose: odeSE is first order)
+%!     assert (y(:,1), cos (t), 0.05);
+%!   endfor
+%! endfor
+
+## the same with output at given times and with the sol struct
+%!test
+%! for s = all3
+%!   [t, y, msg, id] = run_warn (s{1}, @rf_nan_after_1, 0:0.25:3, [1 0]);
+%!   assert (id, "symplectic:nonfinite");
+%!   ## the requested times reached (the last step may end just short of 1)
+%!   assert (numel (t) >= 4);
+%!   assert (t, (0:0.25:0.25*(numel (t) - 1))');
+%!   assert (t(end) <= 1);
+%!   assert (y(:,1), cos (t), 0.05);
+%!   lastwarn ("");
+%!   evalc ("sol = s{1} (@rf_nan_after_1, [0 3], [1 0]);");
+%!   [~, id] = lastwarn ();
+%!   assert (id, "symplectic:nonfinite");
+%!   assert (sol.x(end) > 0.95 && sol.x(end) <= 1);
+%!   assert (all (isfinite (sol.y(:))));
+%! endfor
+
+## NaN in the forced part only of a 2-degree-of-freedom system, with
+## Refine: rows still all finite, in order (odeSPVI evaluates FCN only at
+## its interior nodes, so its last step may end a little after t = 1.5)
+%!test
+%! f = @(t, y) [y(3:4); -y(1:2) + [0; 1 / (t <= 1.5) - 1]];
+%! for s = all3
+%!   [t, y, msg, id] = run_warn (s{1}, f, [0 3], [1 0 0 1], struct ("Refine", 3));
+%!   assert (id, "symplectic:nonfinite");
+%!   assert (all (isfinite (y(:))));
+%!   assert (t(end) > 1.4 && t(end) < 1.6);
+%!   assert (all (diff (t) > 0));
+%! endfor
+
+## the Jacobian or the Hessian returning NaN: the warning names it
+%!test
+%! for s = {@odeSV, @odeSPVI}
+%!   name = func2str (s{1});
+%!   o = struct ("Jacobian", @(t, y) [0 1; -1 0] / (t < 0.5));
+%!   [t, y, msg, id] = run_warn (s{1}, @(t, y) [y(2); -y(1)^3], [0 2], [1 0], o);
+%!   assert (any (strcmp (id, {"symplectic:nonfinite", "symplectic:newton-failed"})));
+%!   assert (regexp (msg, ['^' name ': .*the Jacobian function returned NaN or Inf']));
+%!   assert (all (isfinite (y(:))));
+%!   assert (t(end) >= 0.5 && t(end) < 2);
+%! endfor
+%! ## (odeSE and odeSV: Newton fails with a NaN matrix, and says why)
+%! for s = all3
+%!   name = func2str (s{1});
+%!   o = struct ("HamiltonianHessFcn", @(t, y) eye (2) * NaN);
+%!   [t, y, msg, id] = run_warn (s{1}, osc, [0 2], [1 0], o);
+%!   assert (any (strcmp (id, {"symplectic:nonfinite", "symplectic:newton-failed"})));
+%!   assert (regexp (msg, ['^' name ': .*HamiltonianHessFcn returned NaN or Inf']));
+%!   assert (t, 0);
+%!   assert (y, [1 0]);
+%! endfor
+
+## a collapse into a singularity (H = p^2/2 - 1/|q| from q = 1, p = 0
+## reaches q = 0 at t = pi/(2*sqrt(2)) = 1.1107): adaptive steps shrink
+## until they cannot; the solution up to there comes back
+%!test
+%! f = @(t, y) [y(2); -sign(y(1)) / y(1)^2];
+%! tc = pi / (2 * sqrt (2));
+%! for s = {@odeSE, @odeSPVI}
+%!   name = func2str (s{1});
+%!   [t, y, msg, id] = run_warn (s{1}, f, [0 2], [1 0]);
+%!   assert (any (strcmp (id, {"symplectic:step-size", "symplectic:newton-failed", "symplectic:nonfinite"})), id);
+%!   assert (regexp (msg, ['^' name ': .*returning the solution up to']));
+%!   assert (t(end) > 1.0 && t(end) < tc + 1e-6);
+%!   assert (all (isfinite (y(:))));
+%!   assert (rows (y) > 10);
+%! endfor
+
+## Newton cannot converge with a (much too) large fixed step
+%!test
+%! f = @(t, y) [y(2); -1e3 * y(1)^3];
+%! [t, y, msg, id] = run_warn (@odeSPVI, f, [0 10], [10 0], struct ("TimeStepSize", 1));
+%! assert (id, "symplectic:newton-failed");
+%! assert (regexp (msg, '^odeSPVI: Newton''s method did not converge at t = 0 with the fixed step'));
+%! assert (t, 0);
+%! assert (y, [10 0]);
+
+## MaxSteps
+%!test
+%! for s = all3
+%!   name = func2str (s{1});
+%!   [t, y, msg, id] = run_warn (s{1}, osc, [0 100], [1 0], struct ("MaxSteps", 10));
+%!   assert (id, "symplectic:max-steps");
+%!   assert (regexp (msg, ['^' name ': MaxSteps reached at t = ']));
+%!   assert (rows (y), 11);
+%!   assert (t(end) < 100);
+%!   [t, y, msg, id] = run_warn (s{1}, osc, [0 100], [1 0], struct ("MaxSteps", 10, "TimeStepSize", 0.5));
+%!   assert (id, "symplectic:max-steps");
+%!   assert (t, (0:0.5:5)', 1e-12);
+%! endfor
+
+## the warnings can be turned off by their identifiers; rows still return
+%!test
+%! warning ("off", "symplectic:nonfinite", "local");
+%! lastwarn ("");
+%! [t, y] = odeSPVI (@rf_nan_after_1, [0 3], [1 0]);
+%! assert (lastwarn (), "");
+%! assert (t(end) > 0.95 && t(end) <= 1);
