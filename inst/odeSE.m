@@ -100,7 +100,13 @@
 ##
 ## A run that cannot go on (Newton fails with the fixed step or at the
 ## smallest adaptive step, or @var{fcn} keeps returning NaN) warns and
-## returns every row computed so far.
+## returns every row computed so far.  The warnings' identifiers are
+## @code{symplectic:newton-failed}, @code{symplectic:nonfinite},
+## @code{symplectic:step-size}, @code{symplectic:max-steps},
+## @code{symplectic:output-stop} and @code{symplectic:callback}; bad
+## arguments raise errors with the identifier
+## @code{Octave:invalid-input-arg} whose message begins with the solver's
+## name.
 ##
 ## Example: a pendulum with a fixed step.
 ##
