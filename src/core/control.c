@@ -49,7 +49,7 @@ sym_step_factor (double err, int q, double facmin, double facmax)
   return fmin (facmax, fmax (facmin, fac));
 }
 
-/* Starting step (Hairer, Norsett & Wanner, Solving ODEs I, II.4): balance
+/* Starting step (the classical starting-step estimate): balance
    h*|f0| and h^(q+1) * |f'| against the tolerance.  Costs one rhs call
    (f0 is given). */
 int

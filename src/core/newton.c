@@ -1,8 +1,8 @@
 /* newton.c -- dense LU (LAPACK dgetrf/dgetrs) and the simplified Newton
    iteration shared by the implicit steppers.
 
-   The iteration follows RADAU5: one LU serves many iterations and, while
-   convergence stays fast, many steps.  With dx_k the k-th correction and
+   The iteration is that of implicit Runge-Kutta codes: one LU serves many
+   iterations and, while convergence stays fast, many steps.  With dx_k the k-th correction and
    theta_k = |dx_k| / |dx_{k-1}| the contraction rate, the distance to the
    solution after dx_k is about theta/(1-theta) |dx_k|; we stop when that is
    below tol.  Before theta is known, the eta = theta/(1-theta) of the last

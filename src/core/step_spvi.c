@@ -750,7 +750,7 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
   /* The matrix depends on h: a new one when h changed by more than 20%.
      Measured on adaptive Kepler (4,3), rtol 1e-6..1e-12, rhs + jac calls:
      rebuilding it instead from the kept node Jacobians (a new LU only, as
-     RADAU5 does) saves jac calls but costs as many more iterations (+0..4%
+     implicit Runge-Kutta codes do) saves jac calls but costs as many more iterations (+0..4%
      in all; -2% with finite-difference Jacobians); never invalidating on h
      costs +0..10%. */
   if (c->nw.have_matrix && ! (fabs (h - c->h_mat) <= 0.2 * fabs (c->h_mat)))

@@ -120,7 +120,7 @@ int sym_lu_factor (sym_lu *lu, sym_counters *c); /* SYM_SINGULAR if singular */
 int sym_lu_solve (sym_lu *lu, double *b, sym_counters *c); /* b <- A \ b */
 
 /* ---------------------------------------------------------------- Newton */
-/* Simplified Newton in the manner of RADAU5: the iteration matrix is kept
+/* Simplified Newton as in implicit Runge-Kutta codes: the matrix is kept
    (and its LU reused) while convergence is fast; the contraction rate theta
    is estimated every iteration; the iteration stops when
    theta/(1-theta)*|dx| <= tol (|.| the max norm of dx./scale), or when |dx|
