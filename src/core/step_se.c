@@ -26,7 +26,8 @@
      solve, and was measured up to 1e-10 off.
    - The factored matrix is kept across steps while it pays and while h
      stays within 20% of the h it was built with: each solve's iterations
-     beyond NW_BASE = 2 (what a fresh matrix needs) are charged to it, and
+     beyond SYM_NW_BASE = 2 (steprec.h: what a fresh matrix needs) are
+     charged to it, and
      once they add up to the cost of a new one (1 jac call, or n rhs calls
      of finite differences) it is rebuilt at the next solve.  (newton.c
      itself refreshes a matrix under which the iteration stalls.)
@@ -49,136 +50,54 @@
    through (t_k, y_k, f_k) and (t_{k+1}, y_{k+1}, f_{k+1}) when both f are
    known (they are when want_error or want_dense is set), else linear. */
 #include "sym.h"
+#include "steprec.h"
 
 #include <float.h>
 #include <math.h>
 #include <string.h>
 
-/* Newton iterations a solve needs with a fresh matrix and a good start;
-   iterations beyond this are charged to the kept matrix */
-#define NW_BASE 2
-
-/* One step: its start, end and the f values known at its two ends. */
-typedef struct {
-  double t, h, tend;
-  double *y0, *y1, *f0, *f1;    /* n each */
-  int have_f0, have_f1;
-} se_rec;
-
 typedef struct {
   int d, n;
   int separable, want_f;
-  se_rec rec[2];
-  se_rec *cur, *trial;   /* last accepted step, step being tried */
-  int have_cur;
-  int trial_ok;          /* the last step() succeeded: accept() may take it */
-  sym_newton nw;
-  double h_mat;          /* h the Newton matrix was built with */
-  long extra;            /* iterations beyond NW_BASE charged to the matrix */
-  double *block;         /* the one allocation holding the arrays below */
+  sym_recs r;            /* last accepted step, step being tried */
+  sym_fcache fc;         /* the last f evaluated */
+  sym_kept kn;           /* Newton for p_{k+1} */
+  double *block;         /* the one allocation holding the arrays */
   double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
-  double *yw, *fw;       /* n: last y where f was evaluated, and f there */
-  double tw;             /* and the t */
-  int have_fw;
-  double *ym, *jw;       /* n, n*n: Jacobian work */
   /* the step being solved (for the Newton callbacks) */
   sym_system *sys;
   double tk, hk;
   const double *yk;
 } se_state;
 
-static int
-same_vec (int n, const double *a, const double *b)
-{
-  for (int i = 0; i < n; i++)
-    if (a[i] != b[i])
-      return 0;
-  return 1;
-}
-
-/* the end of the last step (of size h) and the start of this one: the
-   driver may form them as t + h and t0 + k h, a few ulps apart */
-static int
-same_time (double a, double b, double h)
-{
-  return a == b
-         || fabs (a - b) <= 4.0 * DBL_EPSILON
-                            * fmax (fmax (fabs (a), fabs (b)), fabs (h));
-}
-
-static double
-norm_inf (int n, const double *v)
-{
-  double m = 0.0;
-  for (int i = 0; i < n; i++)
-    m = fmax (m, fabs (v[i]));
-  return m;
-}
-
-/* f at (t, [a; b]) into fw, remembered with its argument; no call when fw
-   already holds f there */
-static int
-eval_at (se_state *s, double t, const double *a, const double *b)
-{
-  const int d = s->d;
-  if (s->have_fw && s->tw == t && same_vec (d, s->yw, a)
-      && same_vec (d, s->yw + d, b))
-    return SYM_SUCCESS;
-  memcpy (s->yw, a, (size_t) d * sizeof (double));
-  memcpy (s->yw + d, b, (size_t) d * sizeof (double));
-  s->tw = t;
-  s->have_fw = 0;
-  int st = sym_rhs (s->sys, t, s->yw, s->fw);
-  if (st == SYM_SUCCESS)
-    s->have_fw = 1;
-  return st;
-}
-
-/* G(P) = P - p_k - h f_p(t_k, q_k, P); f at [q_k; P] stays in fw. */
+/* G(P) = P - p_k - h f_p(t_k, q_k, P); f at [q_k; P] stays in the cache. */
 static int
 se_residual (void *ctx, const double *x, double *r)
 {
   se_state *s = ctx;
   const int d = s->d;
-  int st = eval_at (s, s->tk, s->yk, x);
+  int st = sym_fcache_f (&s->fc, s->sys, s->tk, s->yk, x);
   if (st)
     return st;
   for (int i = 0; i < d; i++)
-    r[i] = x[i] - s->yk[d + i] - s->hk * s->fw[d + i];
+    r[i] = x[i] - s->yk[d + i] - s->hk * s->fc.fw[d + i];
   return SYM_SUCCESS;
 }
 
-/* G'(P) ~ I - h A_pp at [q_k; P].  For finite differences f is evaluated
-   there first: the differences need it, and the iteration's first residual
-   then finds it in fw. */
+/* G'(P) ~ I - h A_pp at [q_k; P]. */
 static int
 se_matrix (void *ctx, const double *x, double *a)
 {
   se_state *s = ctx;
   const int d = s->d, n = s->n;
-  const double *y, *f0 = NULL;
-  int st;
-  if (! s->sys->jac)
-    {
-      if ((st = eval_at (s, s->tk, s->yk, x)))
-        return st;
-      y = s->yw;
-      f0 = s->fw;
-    }
-  else
-    {
-      memcpy (s->ym, s->yk, (size_t) d * sizeof (double));
-      memcpy (s->ym + d, x, (size_t) d * sizeof (double));
-      y = s->ym;
-    }
-  if ((st = sym_jac (s->sys, s->tk, y, f0, s->jw)))
+  int st = sym_fcache_jac (&s->fc, s->sys, s->tk, s->yk, x);
+  if (st)
     return st;
   for (int j = 0; j < d; j++)
     for (int i = 0; i < d; i++)
       a[i + (size_t) j * d] = (i == j ? 1.0 : 0.0)
-        - s->hk * s->jw[(d + i) + (size_t) (d + j) * n];
-  s->h_mat = s->hk;
-  s->extra = 0;
+        - s->hk * s->fc.jw[(d + i) + (size_t) (d + j) * n];
+  sym_kept_built (&s->kn, s->hk);
   return SYM_SUCCESS;
 }
 
@@ -209,37 +128,27 @@ se_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
       s->separable = opts->separable != 0;
       s->want_f = opts->want_error || opts->want_dense;
     }
-  /* rec: 2 x 4n; x, scale, rv: 3d; yw, fw, ym: 3n; jw: n*n */
-  size_t len = (size_t) 8 * n + 3 * (size_t) d + 3 * (size_t) n
-               + (size_t) n * n;
+  /* records, f cache, and x, scale, rv: 3d */
+  size_t len = sym_recs_len (n, 0) + sym_fcache_len (d) + 3 * (size_t) d;
   s->block = sym_calloc (len, sizeof (double));
-  if (! s->block || sym_newton_init (&s->nw, d))
+  if (! s->block || sym_newton_init (&s->kn.nw, d))
     {
       se_free (s);
       *status = SYM_ENOMEM;
       return NULL;
     }
   double *w = s->block;
-  for (int k = 0; k < 2; k++)
-    {
-      s->rec[k].y0 = w; w += n;
-      s->rec[k].y1 = w; w += n;
-      s->rec[k].f0 = w; w += n;
-      s->rec[k].f1 = w; w += n;
-    }
+  sym_recs_place (&s->r, n, 0, w);
+  w += sym_recs_len (n, 0);
+  sym_fcache_place (&s->fc, d, w);
+  w += sym_fcache_len (d);
   s->x = w; w += d;
   s->scale = w; w += d;
-  s->rv = w; w += d;
-  s->yw = w; w += n;
-  s->fw = w; w += n;
-  s->ym = w; w += n;
-  s->jw = w;
+  s->rv = w;
   if (opts && opts->newton_tol > 0)
-    s->nw.tol = opts->newton_tol;
+    s->kn.nw.tol = opts->newton_tol;
   if (opts && opts->max_newton > 0)
-    s->nw.maxit = opts->max_newton;
-  s->cur = &s->rec[0];
-  s->trial = &s->rec[1];
+    s->kn.nw.maxit = opts->max_newton;
   *status = SYM_SUCCESS;
   return s;
 }
@@ -250,7 +159,7 @@ se_free (void *state)
   se_state *s = state;
   if (! s)
     return;
-  sym_newton_free (&s->nw);   /* safe on the zeroed struct too */
+  sym_newton_free (&s->kn.nw);   /* safe on the zeroed struct too */
   sym_free (s->block);
   sym_free (s);
 }
@@ -264,157 +173,68 @@ se_step (void *state, sym_system *sys, double t, double h, const double *y,
   if (! s || ! sys || ! y || ! ynext || ! isfinite (t) || ! isfinite (h)
       || h == 0.0)
     return SYM_EBADINPUT;
-  const int d = s->d, n = s->n;
-  s->trial_ok = 0;
-  se_rec *tr = s->trial, *cu = s->cur;
-  /* does the last accepted step end where this one starts? */
-  const int cont = s->have_cur && same_time (t, cu->tend, cu->h)
-                   && same_vec (n, y, cu->y1);
-  /* f(t, y) is known from an earlier attempt from the same point, or from
-     the end of the last accepted step */
-  if (! (tr->have_f0 && t == tr->t && same_vec (n, y, tr->y0)))
-    {
-      tr->have_f0 = 0;
-      memcpy (tr->y0, y, (size_t) n * sizeof (double));
-      if (cont && cu->have_f1)
-        {
-          memcpy (tr->f0, cu->f1, (size_t) n * sizeof (double));
-          tr->have_f0 = 1;
-        }
-    }
-  tr->t = t;
-  tr->h = h;
-  tr->tend = t + h;
-  tr->have_f1 = 0;
+  const int d = s->d;
+  const int cont = sym_recs_begin (&s->r, t, h, y);
+  sym_rec *tr = s->r.trial, *cu = s->r.cur;
   const double *q0 = tr->y0, *p0 = tr->y0 + d;
   double *q1 = tr->y1, *p1 = tr->y1 + d;
   s->sys = sys;
 
   if (s->separable)
     {
-      if (! tr->have_f0)
-        {
-          st = sym_rhs (sys, t, tr->y0, tr->f0);
-          if (st)
-            return st;
-          tr->have_f0 = 1;
-        }
+      if ((st = sym_recs_f0 (&s->r, sys)))
+        return st;
       for (int i = 0; i < d; i++)
         p1[i] = p0[i] + h * tr->f0[d + i];
-      st = eval_at (s, t, q0, p1);
+      st = sym_fcache_f (&s->fc, sys, t, q0, p1);
       if (st)
         return st;
       for (int i = 0; i < d; i++)
-        q1[i] = q0[i] + h * s->fw[i];
+        q1[i] = q0[i] + h * s->fc.fw[i];
     }
   else
     {
       double *x = s->x;
       double sc = 0.0;
+      /* the start: an explicit Euler step when f(t, y) is known, else the
+         last step's increment; one call for f(t, y) when neither helps */
       for (int pass = 0; pass < 2; pass++)
         {
-          if (! tr->have_f0 && (! cont || pass == 1))
-            {
-              st = sym_rhs (sys, t, tr->y0, tr->f0);
-              if (st)
-                return st;
-              tr->have_f0 = 1;
-            }
+          if (! tr->have_f0 && (! cont || pass == 1)
+              && (st = sym_recs_f0 (&s->r, sys)))
+            return st;
           if (tr->have_f0)
             for (int i = 0; i < d; i++)
               x[i] = p0[i] + h * tr->f0[d + i];
           else   /* cont: the last step's increment */
             for (int i = 0; i < d; i++)
               x[i] = p0[i] + (p0[i] - cu->y0[d + i]) * (h / cu->h);
-          sc = norm_inf (d, p0);
+          sc = sym_norm_inf (d, p0);
           for (int i = 0; i < d; i++)
             sc = fmax (sc, fabs (x[i] - p0[i]));
           if (sc > 0.0 || tr->have_f0)
             break;
         }
-      if (! (sc > 0.0))
-        sc = 1.0;
-      for (int i = 0; i < d; i++)
-        s->scale[i] = sc;
-
-      if (s->nw.have_matrix && fabs (h - s->h_mat) > 0.2 * fabs (s->h_mat))
-        sym_newton_invalidate (&s->nw);
       s->tk = t;
       s->hk = h;
       s->yk = tr->y0;
       sym_newton_problem prob = { se_residual, se_matrix, s };
-      /* newton.c may stop after a single iteration, judging by the
-         contraction rate of an earlier solve; the f needed at the solution
-         gives the residual there for free, which checks that a posteriori
-         (a failed check goes on iterating from there, its first residual
-         already known, with the contraction rate that residual shows).  A
-         last correction at round-off level needs neither: fw, f at the
-         previous iterate, is then f at P. */
-      for (int round = 0; round < 3; round++)
-        {
-          st = sym_newton_solve (&s->nw, &prob, x, s->scale, &sys->cnt);
-          if (st)
-            {
-              sym_newton_invalidate (&s->nw);
-              return st;
-            }
-          if (s->nw.iters > NW_BASE)
-            {
-              s->extra += s->nw.iters - NW_BASE;
-              if (s->extra >= (sys->jac ? 1 : n))
-                sym_newton_invalidate (&s->nw);
-            }
-          if (norm_inf (d, s->nw.dx) <= 4.0 * DBL_EPSILON * sc)
-            break;
-          if ((st = se_residual (s, x, s->rv)))
-            return st;
-          double rn = norm_inf (d, s->rv);
-          if (rn <= fmax (4.0 * s->nw.tol, 8.0 * DBL_EPSILON) * sc)
-            break;
-          /* the residual is about the next correction: the rate it shows
-             replaces the one newton.c trusted */
-          double th = rn / fmax (norm_inf (d, s->nw.dx), DBL_MIN);
-          s->nw.eta = th < 0.5 ? th / (1.0 - th) : 1.0;
-        }
-      memcpy (p1, x, (size_t) d * sizeof (double));
-      for (int i = 0; i < d; i++)
-        q1[i] = q0[i] + h * s->fw[i];
-    }
-
-  if (s->want_f || yerr)
-    {
-      if (! tr->have_f0)
-        {
-          st = sym_rhs (sys, t, tr->y0, tr->f0);
-          if (st)
-            return st;
-          tr->have_f0 = 1;
-        }
-      st = sym_rhs (sys, tr->tend, tr->y1, tr->f1);
+      st = sym_kept_solve (&s->kn, &prob, sys, h, d, sc, x, s->scale, s->rv);
       if (st)
         return st;
-      tr->have_f1 = 1;
+      /* the cache holds f at [q_k; P] */
+      memcpy (p1, x, (size_t) d * sizeof (double));
+      for (int i = 0; i < d; i++)
+        q1[i] = q0[i] + h * s->fc.fw[i];
     }
-  if (yerr)
-    for (int i = 0; i < n; i++)
-      yerr[i] = (tr->y1[i] - tr->y0[i])
-        - 0.5 * h * (tr->f0[i] + tr->f1[i]);
-  memcpy (ynext, tr->y1, (size_t) n * sizeof (double));
-  s->trial_ok = 1;
-  return SYM_SUCCESS;
+  return sym_recs_finish (&s->r, sys, s->want_f, yerr, ynext);
 }
 
 static void
 se_accept (void *state)
 {
   se_state *s = state;
-  if (! s->trial_ok)   /* nothing to accept */
-    return;
-  se_rec *r = s->cur;
-  s->cur = s->trial;
-  s->trial = r;
-  s->have_cur = 1;
-  s->trial_ok = 0;
+  sym_recs_accept (&s->r);
 }
 
 static int
@@ -422,33 +242,9 @@ se_dense (void *state, sym_system *sys, double t, double *y)
 {
   se_state *s = state;
   (void) sys;
-  if (! s || ! y || ! s->have_cur || ! isfinite (t))
+  if (! s)
     return SYM_EBADINPUT;
-  const se_rec *c = s->cur;
-  const int n = s->n;
-  if (t == c->t)
-    {
-      memcpy (y, c->y0, (size_t) n * sizeof (double));
-      return SYM_SUCCESS;
-    }
-  if (t == c->tend)
-    {
-      memcpy (y, c->y1, (size_t) n * sizeof (double));
-      return SYM_SUCCESS;
-    }
-  const double th = (t - c->t) / c->h, h = c->h;
-  if (c->have_f0 && c->have_f1)
-    {
-      const double u = 1.0 - th;
-      const double a0 = u * u * (1.0 + 2.0 * th), a1 = th * th * (3.0 - 2.0 * th);
-      const double b0 = h * th * u * u, b1 = -h * th * th * u;
-      for (int i = 0; i < n; i++)
-        y[i] = a0 * c->y0[i] + a1 * c->y1[i] + b0 * c->f0[i] + b1 * c->f1[i];
-    }
-  else
-    for (int i = 0; i < n; i++)
-      y[i] = c->y0[i] + th * (c->y1[i] - c->y0[i]);
-  return SYM_SUCCESS;
+  return sym_recs_dense (&s->r, t, y);
 }
 
 static void
@@ -456,13 +252,9 @@ se_reset (void *state)
 {
   se_state *s = state;
   /* forget the last step (dense output, predictor, FSAL) and every f kept;
-     the Newton matrices stay: newton.c refreshes them if they no longer
-     serve */
-  s->have_cur = 0;
-  s->trial_ok = 0;
-  s->rec[0].have_f0 = s->rec[0].have_f1 = 0;
-  s->rec[1].have_f0 = s->rec[1].have_f1 = 0;
-  s->have_fw = 0;
+     the Newton matrix stays: newton.c refreshes it if it no longer serves */
+  sym_recs_forget (&s->r);
+  s->fc.have_fw = 0;
 }
 
 static int

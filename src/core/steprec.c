@@ -1,0 +1,280 @@
+/* steprec.c -- step records, f cache and checked Newton solves shared by
+   the symplectic Euler and Stormer-Verlet steppers (see steprec.h). */
+#include "steprec.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+int
+sym_same_vec (int n, const double *a, const double *b)
+{
+  for (int i = 0; i < n; i++)
+    if (a[i] != b[i])
+      return 0;
+  return 1;
+}
+
+int
+sym_same_time (double a, double b, double h)
+{
+  return a == b
+         || fabs (a - b) <= 4.0 * DBL_EPSILON
+                            * fmax (fmax (fabs (a), fabs (b)), fabs (h));
+}
+
+double
+sym_norm_inf (int n, const double *v)
+{
+  double m = 0.0;
+  for (int i = 0; i < n; i++)
+    m = fmax (m, fabs (v[i]));
+  return m;
+}
+
+/* ---------------------------------------------------------------- records */
+
+size_t
+sym_recs_len (int n, int naux)
+{
+  return (size_t) 2 * (4 * (size_t) n + (size_t) naux);
+}
+
+void
+sym_recs_place (sym_recs *r, int n, int naux, double *w)
+{
+  memset (r, 0, sizeof (*r));
+  r->n = n;
+  r->naux = naux;
+  for (int k = 0; k < 2; k++)
+    {
+      r->rec[k].y0 = w; w += n;
+      r->rec[k].y1 = w; w += n;
+      r->rec[k].f0 = w; w += n;
+      r->rec[k].f1 = w; w += n;
+      r->rec[k].aux = w; w += naux;
+    }
+  r->cur = &r->rec[0];
+  r->trial = &r->rec[1];
+}
+
+int
+sym_recs_begin (sym_recs *r, double t, double h, const double *y)
+{
+  const int n = r->n;
+  r->trial_ok = 0;
+  sym_rec *tr = r->trial, *cu = r->cur;
+  const int cont = r->have_cur && sym_same_time (t, cu->tend, cu->h)
+                   && sym_same_vec (n, y, cu->y1);
+  if (! (tr->have_f0 && t == tr->t && sym_same_vec (n, y, tr->y0)))
+    {
+      tr->have_f0 = 0;
+      memcpy (tr->y0, y, (size_t) n * sizeof (double));
+      if (cont && cu->have_f1)
+        {
+          memcpy (tr->f0, cu->f1, (size_t) n * sizeof (double));
+          tr->have_f0 = 1;
+        }
+    }
+  tr->t = t;
+  tr->h = h;
+  tr->tend = t + h;
+  tr->have_f1 = 0;
+  return cont;
+}
+
+int
+sym_recs_f0 (sym_recs *r, sym_system *sys)
+{
+  sym_rec *tr = r->trial;
+  if (tr->have_f0)
+    return SYM_SUCCESS;
+  int st = sym_rhs (sys, tr->t, tr->y0, tr->f0);
+  if (st == SYM_SUCCESS)
+    tr->have_f0 = 1;
+  return st;
+}
+
+int
+sym_recs_finish (sym_recs *r, sym_system *sys, int want_f, double *yerr,
+                 double *ynext)
+{
+  const int n = r->n;
+  sym_rec *tr = r->trial;
+  int st;
+  if (want_f || yerr)
+    {
+      if ((st = sym_recs_f0 (r, sys)))
+        return st;
+      if ((st = sym_rhs (sys, tr->tend, tr->y1, tr->f1)))
+        return st;
+      tr->have_f1 = 1;
+    }
+  if (yerr)
+    for (int i = 0; i < n; i++)
+      yerr[i] = (tr->y1[i] - tr->y0[i])
+        - 0.5 * tr->h * (tr->f0[i] + tr->f1[i]);
+  memcpy (ynext, tr->y1, (size_t) n * sizeof (double));
+  r->trial_ok = 1;
+  return SYM_SUCCESS;
+}
+
+void
+sym_recs_accept (sym_recs *r)
+{
+  if (! r->trial_ok)   /* nothing to accept */
+    return;
+  sym_rec *c = r->cur;
+  r->cur = r->trial;
+  r->trial = c;
+  r->have_cur = 1;
+  r->trial_ok = 0;
+}
+
+int
+sym_recs_dense (const sym_recs *r, double t, double *y)
+{
+  if (! y || ! r->have_cur || ! isfinite (t))
+    return SYM_EBADINPUT;
+  const sym_rec *c = r->cur;
+  const int n = r->n;
+  if (t == c->t)
+    {
+      memcpy (y, c->y0, (size_t) n * sizeof (double));
+      return SYM_SUCCESS;
+    }
+  if (t == c->tend)
+    {
+      memcpy (y, c->y1, (size_t) n * sizeof (double));
+      return SYM_SUCCESS;
+    }
+  const double th = (t - c->t) / c->h, h = c->h;
+  if (c->have_f0 && c->have_f1)
+    {
+      const double u = 1.0 - th;
+      const double a0 = u * u * (1.0 + 2.0 * th), a1 = th * th * (3.0 - 2.0 * th);
+      const double b0 = h * th * u * u, b1 = -h * th * th * u;
+      for (int i = 0; i < n; i++)
+        y[i] = a0 * c->y0[i] + a1 * c->y1[i] + b0 * c->f0[i] + b1 * c->f1[i];
+    }
+  else
+    for (int i = 0; i < n; i++)
+      y[i] = c->y0[i] + th * (c->y1[i] - c->y0[i]);
+  return SYM_SUCCESS;
+}
+
+void
+sym_recs_forget (sym_recs *r)
+{
+  r->have_cur = 0;
+  r->trial_ok = 0;
+  r->rec[0].have_f0 = r->rec[0].have_f1 = 0;
+  r->rec[1].have_f0 = r->rec[1].have_f1 = 0;
+}
+
+/* ---------------------------------------------------------------- f cache */
+
+size_t
+sym_fcache_len (int d)
+{
+  const size_t n = 2 * (size_t) d;
+  return 3 * n + n * n;
+}
+
+void
+sym_fcache_place (sym_fcache *c, int d, double *w)
+{
+  const int n = 2 * d;
+  memset (c, 0, sizeof (*c));
+  c->d = d;
+  c->yw = w; w += n;
+  c->fw = w; w += n;
+  c->ym = w; w += n;
+  c->jw = w;
+}
+
+int
+sym_fcache_f (sym_fcache *c, sym_system *sys, double t, const double *a,
+              const double *b)
+{
+  const int d = c->d;
+  if (c->have_fw && c->tw == t && sym_same_vec (d, c->yw, a)
+      && sym_same_vec (d, c->yw + d, b))
+    return SYM_SUCCESS;
+  memcpy (c->yw, a, (size_t) d * sizeof (double));
+  memcpy (c->yw + d, b, (size_t) d * sizeof (double));
+  c->tw = t;
+  c->have_fw = 0;
+  int st = sym_rhs (sys, t, c->yw, c->fw);
+  if (st == SYM_SUCCESS)
+    c->have_fw = 1;
+  return st;
+}
+
+int
+sym_fcache_jac (sym_fcache *c, sym_system *sys, double t, const double *a,
+                const double *b)
+{
+  const int d = c->d;
+  int st;
+  if (! sys->jac)
+    {
+      if ((st = sym_fcache_f (c, sys, t, a, b)))
+        return st;
+      return sym_jac (sys, t, c->yw, c->fw, c->jw);
+    }
+  memcpy (c->ym, a, (size_t) d * sizeof (double));
+  memcpy (c->ym + d, b, (size_t) d * sizeof (double));
+  return sym_jac (sys, t, c->ym, NULL, c->jw);
+}
+
+/* ---------------------------------------------------------------- Newton */
+
+void
+sym_kept_built (sym_kept *k, double h)
+{
+  k->h_mat = h;
+  k->extra = 0;
+}
+
+int
+sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
+                sym_system *sys, double h, int d, double sc, double *x,
+                double *scale, double *rv)
+{
+  sym_newton *nw = &k->nw;
+  if (nw->have_matrix && fabs (h - k->h_mat) > 0.2 * fabs (k->h_mat))
+    sym_newton_invalidate (nw);
+  if (! (sc > 0.0))
+    sc = 1.0;
+  for (int i = 0; i < d; i++)
+    scale[i] = sc;
+  for (int round = 0; round < 3; round++)
+    {
+      int st = sym_newton_solve (nw, prob, x, scale, &sys->cnt);
+      if (st)
+        {
+          sym_newton_invalidate (nw);
+          return st;
+        }
+      if (nw->iters > SYM_NW_BASE)
+        {
+          k->extra += nw->iters - SYM_NW_BASE;
+          if (k->extra >= (sys->jac ? 1 : 2 * d))
+            sym_newton_invalidate (nw);
+        }
+      /* the cache holds f at the previous iterate, a round-off step away */
+      if (sym_norm_inf (d, nw->dx) <= 4.0 * DBL_EPSILON * sc)
+        return SYM_SUCCESS;
+      if ((st = prob->residual (prob->ctx, x, rv)))
+        return st;
+      double rn = sym_norm_inf (d, rv);
+      if (rn <= fmax (4.0 * nw->tol, 8.0 * DBL_EPSILON) * sc)
+        return SYM_SUCCESS;
+      /* the residual is about the next correction: the rate it shows
+         replaces the one newton.c trusted */
+      double th = rn / fmax (sym_norm_inf (d, nw->dx), DBL_MIN);
+      nw->eta = th < 0.5 ? th / (1.0 - th) : 1.0;
+    }
+  return SYM_SUCCESS;   /* three solves claimed convergence: take it */
+}

@@ -1,0 +1,98 @@
+/* steprec.h -- internal to the core: what the one-step methods of
+   step_se.c and step_sv.c share.  A pair of step records (the last
+   accepted step and the one being tried, swapped on accept) with the f
+   values at their ends, their dense output, a cache of the last f (and Df)
+   evaluation, and the checked Newton solve with its kept matrix. */
+#ifndef SYM_STEPREC_H
+#define SYM_STEPREC_H
+
+#include "sym.h"
+
+/* Newton iterations a solve needs with a fresh matrix and a good start;
+   iterations beyond this are charged to the kept matrix */
+#define SYM_NW_BASE 2
+
+/* One step: its start, end, the f values known at its two ends, and the
+   method's own values (aux), which travel with the record. */
+typedef struct {
+  double t, h, tend;
+  double *y0, *y1, *f0, *f1;    /* n each */
+  double *aux;                  /* naux */
+  int have_f0, have_f1;
+} sym_rec;
+
+typedef struct {
+  int n, naux;
+  sym_rec rec[2];
+  sym_rec *cur, *trial;   /* last accepted step, step being tried */
+  int have_cur;
+  int trial_ok;           /* the last step succeeded: accept may take it */
+} sym_recs;
+
+/* doubles the records need; place them in w */
+size_t sym_recs_len (int n, int naux);
+void sym_recs_place (sym_recs *r, int n, int naux, double *w);
+/* Start the trial step (t, h) from y: f(t, y) is reused from an earlier
+   attempt from the same point, or from the end of the last accepted step.
+   Returns whether the last accepted step ends where this one starts. */
+int sym_recs_begin (sym_recs *r, double t, double h, const double *y);
+/* f at the trial step's start, evaluated if not known */
+int sym_recs_f0 (sym_recs *r, sym_system *sys);
+/* Finish the trial step whose end is in trial->y1: f at both ends when
+   want_f or yerr (one call at the end; the start's is shared), the
+   estimate yerr = y1 - y0 - h/2 (f0 + f1), ynext. */
+int sym_recs_finish (sym_recs *r, sym_system *sys, int want_f, double *yerr,
+                     double *ynext);
+void sym_recs_accept (sym_recs *r);
+/* cubic Hermite with both f values, else linear; exact at the ends */
+int sym_recs_dense (const sym_recs *r, double t, double *y);
+/* forget the last step and every f kept */
+void sym_recs_forget (sym_recs *r);
+
+/* The last evaluation of f (at yw, into fw) and a Jacobian work area. */
+typedef struct {
+  int d;
+  double *yw, *fw, *ym, *jw;    /* n, n, n, n*n */
+  double tw;
+  int have_fw;
+} sym_fcache;
+
+size_t sym_fcache_len (int d);
+void sym_fcache_place (sym_fcache *c, int d, double *w);
+/* f at (t, [a; b]) into fw; no call when fw already holds f there */
+int sym_fcache_f (sym_fcache *c, sym_system *sys, double t, const double *a,
+                  const double *b);
+/* Df at (t, [a; b]) into jw.  For finite differences f is evaluated there
+   first: the differences need it, and the iteration's first residual then
+   finds it in fw. */
+int sym_fcache_jac (sym_fcache *c, sym_system *sys, double t,
+                    const double *a, const double *b);
+
+/* A Newton state with the h its matrix was built with and the iterations
+   beyond SYM_NW_BASE charged to that matrix. */
+typedef struct {
+  sym_newton nw;
+  double h_mat;
+  long extra;
+} sym_kept;
+
+/* to be called by a matrix callback that has built a matrix for h */
+void sym_kept_built (sym_kept *k, double h);
+/* Solve for x (d unknowns, scale sc) with the kept matrix for step h: a
+   new matrix when h changed by more than 20% or the extra iterations have
+   cost as much as a new Jacobian.  newton.c may stop after one iteration,
+   judging by an earlier solve's rate; the residual at the solution (which
+   leaves f there in the cache the residual uses) checks that, and a failed
+   check iterates on with the rate it shows (three solves at most).  A last
+   correction at round-off level needs no check.  rv, scale: d of work. */
+int sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
+                    sym_system *sys, double h, int d, double sc, double *x,
+                    double *scale, double *rv);
+
+int sym_same_vec (int n, const double *a, const double *b);
+/* the end of the last step (of size h) and the start of this one: the
+   driver may form them as t + h and t0 + k h, a few ulps apart */
+int sym_same_time (double a, double b, double h);
+double sym_norm_inf (int n, const double *v);
+
+#endif
