@@ -9,6 +9,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -65,13 +66,19 @@ shape (const mxArray *a, char *buf, size_t len)
    elements; convert it to double if needed.  Returns a double array. */
 static const double *
 checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
-                const char *expect, double t)
+                double t, const char *expect_fmt, ...)
 {
   mxArray *a = *pa;
   char buf[64];
   if (! a || ! (mxIsNumeric (a) || mxIsLogical (a)) || mxIsComplex (a)
       || mxIsSparse (a) || mxGetNumberOfElements (a) != k)
     {
+      /* what was expected, formatted only here: callbacks stay cheap */
+      char expect[128];
+      va_list ap;
+      va_start (ap, expect_fmt);
+      vsnprintf (expect, sizeof expect, expect_fmt, ap);
+      va_end (ap);
       if (a && mxIsComplex (a) && mxGetNumberOfElements (a) == k)
         mexErrMsgIdAndTxt (BADARG, "%s: %s returned a complex value at "
                            "t = %.17g; expected %s", c->solver, what, t,
@@ -116,9 +123,8 @@ cb_rhs (double t, const double *y, double *dy, void *user)
   mxGetPr (c->args[1])[0] = t;
   memcpy (mxGetPr (c->args[2]), y, sizeof (double) * c->n);
   mexCallMATLAB (1, out, c->nargs, c->args, "feval");
-  char expect[64];
-  snprintf (expect, sizeof expect, "a vector of %d real elements", c->n);
-  const double *v = checked_values (c, out, c->n, "FCN", expect, t);
+  const double *v = checked_values (c, out, c->n, "FCN", t,
+                                    "a vector of %d real elements", c->n);
   note_nonfinite (c, v, c->n, "FCN", t);
   memcpy (dy, v, sizeof (double) * c->n);
   mxDestroyArray (out[0]);
@@ -151,14 +157,12 @@ cb_rhs_batch (int k, const double *t, const double *y, double *dy,
   mexCallMATLAB (1, out, c->nargs, c->args, "feval");
   c->args[1] = t1;
   c->args[2] = y1;
-  char expect[96];
-  snprintf (expect, sizeof expect, "a %dx%d real matrix (Vectorized)", c->n,
-            k);
+  static const char *expect = "a %dx%d real matrix (Vectorized)";
   if (out[0] && (mxGetM (out[0]) != (size_t) c->n
                  || mxGetN (out[0]) != (size_t) k))
-    checked_values (c, out, (size_t) -1, "FCN", expect, t[0]);  /* fails */
-  const double *v = checked_values (c, out, (size_t) c->n * k, "FCN",
-                                    expect, t[0]);
+    checked_values (c, out, (size_t) -1, "FCN", t[0], expect, c->n, k);
+  const double *v = checked_values (c, out, (size_t) c->n * k, "FCN", t[0],
+                                    expect, c->n, k);
   note_nonfinite (c, v, (size_t) c->n * k, "FCN", t[0]);
   memcpy (dy, v, sizeof (double) * c->n * k);
   mxDestroyArray (out[0]);
@@ -183,7 +187,6 @@ cb_jac (double t, const double *y, double *df, void *user)
 {
   ctx_t *c = user;
   int n = c->n;
-  char expect[96];
   if (c->jac_source == JAC_MATRIX)
     {
       memcpy (df, c->jac_const, sizeof (double) * n * n);
@@ -202,25 +205,25 @@ cb_jac (double t, const double *y, double *df, void *user)
     mexCallMATLAB (1, out, c->nargs, c->jargs, "feval");
   if (c->jac_source == JAC_FCN)
     {
-      snprintf (expect, sizeof expect, "a %dx%d real matrix (df/dy)", n, n);
+      static const char *expect = "a %dx%d real matrix (df/dy)";
       if (out[0] && (mxGetM (out[0]) != (size_t) n
                      || mxGetN (out[0]) != (size_t) n))
-        checked_values (c, out, (size_t) -1, "the Jacobian function",
-                        expect, t);
+        checked_values (c, out, (size_t) -1, "the Jacobian function", t,
+                        expect, n, n);
       const double *v = checked_values (c, out, (size_t) n * n,
-                                        "the Jacobian function", expect, t);
+                                        "the Jacobian function", t, expect,
+                                        n, n);
       note_nonfinite (c, v, (size_t) n * n, "the Jacobian function", t);
       memcpy (df, v, sizeof (double) * n * n);
     }
   else
     {
-      snprintf (expect, sizeof expect, "the Hessian of H, a %dx%d matrix or "
-                "a vector of %d elements", n, n, n * n);
       const double *v
         = checked_values (c, out, (size_t) n * n,
                           c->jac_source == JAC_FCN2 ? "FCN (second output)"
                                                     : "HamiltonianHessFcn",
-                          expect, t);
+                          t, "the Hessian of H, a %dx%d matrix or a vector "
+                          "of %d elements", n, n, n * n);
       note_nonfinite (c, v, (size_t) n * n,
                       c->jac_source == JAC_FCN2
                       ? "FCN's second output (the Hessian)"
@@ -245,20 +248,19 @@ cb_events (double t, const double *y, double *value, int *isterminal,
                        "outputs [VALUE, ISTERMINAL, DIRECTION], got %d at "
                        "t = %.17g", c->solver, out[0] ? (out[1] ? 2 : 1) : 0,
                        t);
-  char expect[96];
-  snprintf (expect, sizeof expect, "%d real values", c->nevents);
   const double *v = checked_values (c, &out[0], c->nevents,
-                                    "the Events function", expect, t);
+                                    "the Events function", t,
+                                    "%d real values", c->nevents);
   memcpy (value, v, sizeof (double) * c->nevents);
   for (int k = 1; k < 3; k++)
     {
       size_t ne = mxGetNumberOfElements (out[k]);
       if (ne != 1 && ne != (size_t) c->nevents)
-        checked_values (c, &out[k], c->nevents, "the Events function",
-                        "ISTERMINAL and DIRECTION of the size of VALUE", t);
+        checked_values (c, &out[k], c->nevents, "the Events function", t,
+                        "ISTERMINAL and DIRECTION of the size of VALUE");
       const double *w = checked_values (c, &out[k], ne, "the Events function",
-                                        "ISTERMINAL and DIRECTION of the "
-                                        "size of VALUE", t);
+                                        t, "ISTERMINAL and DIRECTION of the "
+                                        "size of VALUE");
       for (int i = 0; i < c->nevents; i++)
         {
           double x = w[ne == 1 ? 0 : i];
@@ -570,9 +572,8 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
     }
   if (! out[0])
     mexCallMATLAB (1, out, c->nargs, c->args, "feval");
-  char expect[64];
-  snprintf (expect, sizeof expect, "a vector of %d real elements", n);
-  const double *f0 = checked_values (c, &out[0], n, "FCN", expect, tspan[0]);
+  const double *f0 = checked_values (c, &out[0], n, "FCN", tspan[0],
+                                     "a vector of %d real elements", n);
   for (int i = 0; i < n; i++)
     if (! isfinite (f0[i]))
       mexErrMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned %g "
@@ -580,10 +581,9 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                          name, f0[i], i + 1, tspan[0]);
   if (have2)
     {
-      snprintf (expect, sizeof expect, "the Hessian of H: %dx%d or %d "
-                "elements", n, n, n * n);
       checked_values (c, &out[1], (size_t) n * n, "FCN (second output)",
-                      expect, tspan[0]);
+                      tspan[0], "the Hessian of H: %dx%d or %d elements", n,
+                      n, n * n);
     }
 
   /* the Jacobian source, in SPEC's order */
