@@ -329,16 +329,12 @@ core_states (spvi_core *c, const double *x)
     }
 }
 
-/* F = f at the nodes of x (one batch call), cached by x.  The evaluation
-   before it in the same solve is kept in Fo (at xfo), and the sizes of the
-   first two moves between evaluations (the first two corrections) in
-   dxn. */
-static int
-core_eval (spvi_core *c, const double *x)
+/* Before a new evaluation at x: the last one becomes the one before it
+   (Fo at xfo), and the size of the move between them is kept in dxn while
+   fewer than two are. */
+static void
+core_eval_shift (spvi_core *c, const double *x)
 {
-  size_t nb = (size_t) c->N * sizeof (double);
-  if (c->fvalid && memcmp (c->xf, x, nb) == 0)
-    return SYM_SUCCESS;
   c->fovalid = c->fvalid;
   if (c->fvalid)
     {
@@ -357,6 +353,19 @@ core_eval (spvi_core *c, const double *x)
         }
     }
   c->fvalid = 0;
+}
+
+/* F = f at the nodes of x (one batch call), cached by x.  The evaluation
+   before it in the same solve is kept in Fo (at xfo), and the sizes of the
+   first two moves between evaluations (the first two corrections) in
+   dxn. */
+static int
+core_eval (spvi_core *c, const double *x)
+{
+  size_t nb = (size_t) c->N * sizeof (double);
+  if (c->fvalid && memcmp (c->xf, x, nb) == 0)
+    return SYM_SUCCESS;
+  core_eval_shift (c, x);
   core_states (c, x);
   int st = sym_rhs_many (c->sys, c->m, c->tj, c->Y, c->F);
   if (st)
@@ -416,25 +425,46 @@ core_matrix (void *ctx, const double *x, double *M)
   const int m = c->m;
   const size_t nn = 2 * (size_t) c->d;
   int st;
-  /* Finite differences need f at the nodes: evaluate it once here (one
-     batch call), and the residual at this x reuses it. */
-  if (! c->sys->jac)
-    {
-      if ((st = core_eval (c, x)))
-        return c->cb_fail = st;
-    }
-  else
-    core_states (c, x);
   /* One Jacobian per node: also measured, one at the middle node for all
      (m times fewer jac calls per matrix, but slower contraction and, on
      Kepler (4,3), as many calls in all); the exact matrix also keeps the
      full-Newton fallback quadratic. */
-  for (int j = 0; j < m; j++)
+  if (c->sys->rhs_jac)
     {
-      st = sym_jac (c->sys, c->tj[j], c->Y + j * nn,
-                    c->sys->jac ? NULL : c->F + j * nn, c->A + j * nn * nn);
-      if (st)
-        return c->cb_fail = st;
+      /* f comes with the Jacobians (the Hessian as FCN's second output):
+         the residual at this x, which follows, reuses it.  Measured on
+         Kepler (4,3), h = 2 pi/100: 0.57 fewer rhs calls per step. */
+      size_t nb = (size_t) c->N * sizeof (double);
+      if (! (c->fvalid && memcmp (c->xf, x, nb) == 0))
+        core_eval_shift (c, x);
+      c->fvalid = 0;
+      core_states (c, x);
+      for (int j = 0; j < m; j++)
+        if ((st = sym_rhs_jac (c->sys, c->tj[j], c->Y + j * nn,
+                               c->F + j * nn, c->A + j * nn * nn)))
+          return c->cb_fail = st;
+      memcpy (c->xf, x, nb);
+      c->fvalid = 1;
+    }
+  else
+    {
+      /* Finite differences need f at the nodes: evaluate it once here
+         (one batch call), and the residual at this x reuses it. */
+      if (! c->sys->jac)
+        {
+          if ((st = core_eval (c, x)))
+            return c->cb_fail = st;
+        }
+      else
+        core_states (c, x);
+      for (int j = 0; j < m; j++)
+        {
+          st = sym_jac (c->sys, c->tj[j], c->Y + j * nn,
+                        c->sys->jac ? NULL : c->F + j * nn,
+                        c->A + j * nn * nn);
+          if (st)
+            return c->cb_fail = st;
+        }
     }
   /* keep them for the extrapolation (core_extrapolate): a new step's
      evaluation becomes the latest, a second one on the same step (a

@@ -67,6 +67,10 @@ typedef int (*sym_rhs_batch_fn) (int k, const double *t, const double *y,
                                  double *dy, void *user);
 /* Df = d f / d y at (t, y): n-by-n column-major. */
 typedef int (*sym_jac_fn) (double t, const double *y, double *df, void *user);
+/* f and Df at (t, y) in one call, when the user's function gives both at
+   the cost of one call (the Hessian as a second output). */
+typedef int (*sym_rhs_jac_fn) (double t, const double *y, double *dy,
+                               double *df, void *user);
 
 typedef struct {
   long nsteps;      /* accepted steps */
@@ -87,6 +91,8 @@ typedef struct {
   sym_rhs_fn rhs;             /* required */
   sym_rhs_batch_fn rhs_batch; /* optional (NULL): several states in one call */
   sym_jac_fn jac;             /* optional (NULL): finite differences of rhs */
+  sym_rhs_jac_fn rhs_jac;     /* optional (NULL): f and jac's Df in one
+                                 call; counted as a jac call only */
   void *user;                 /* passed to every callback */
   sym_counters cnt;           /* kept by the core; zero it before a run */
   double fail_t;              /* t of the last failed callback (for messages) */
@@ -104,6 +110,10 @@ int sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
                   double *dy);
 int sym_jac (sym_system *sys, double t, const double *y, const double *f0,
              double *df);
+/* f and Df at one state: one call of rhs_jac (counted in njac) if the
+   system has it, else sym_rhs and sym_jac. */
+int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
+                 double *df);
 
 /* ---------------------------------------------------------------- LAPACK */
 /* Dense LU with reuse: factor once, solve many times. */

@@ -191,3 +191,26 @@ sym_jac (sym_system *sys, double t, const double *y, const double *f0,
     }
   return SYM_SUCCESS;
 }
+
+int
+sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
+             double *df)
+{
+  if (! sys->rhs_jac)
+    {
+      int st = sym_rhs (sys, t, y, dy);
+      return st ? st : sym_jac (sys, t, y, dy, df);
+    }
+  int n = 2 * sys->dim;
+  sys->cnt.njac++;
+  int st = callback_status (sys, t, sys->rhs_jac (t, y, dy, df, sys->user));
+  if (st)
+    return st;
+  if (! all_finite (n, dy) || ! all_finite (n * n, df))
+    {
+      sys->fail_t = t;
+      sys->fail_status = SYM_NONFINITE;
+      return SYM_NONFINITE;
+    }
+  return SYM_SUCCESS;
+}

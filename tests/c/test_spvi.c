@@ -421,6 +421,69 @@ test_jacobian_sources (void)
   T->free (s3);
 }
 
+/* f and Df in one call (the Hessian as FCN's second output): the same
+   arithmetic as ts_kep and ts_kep_jac; a NaN in Df at call nan_at */
+static long both_calls, both_nan_at;
+
+static int
+kep_both (double t, const double *y, double *dy, double *df, void *user)
+{
+  int st = ts_kep (t, y, dy, user);
+  if (st)
+    return st;
+  st = ts_kep_jac (t, y, df, user);
+  if (++both_calls == both_nan_at)
+    df[3] = NAN;
+  return st;
+}
+
+/* The combined call gives the same steps, bit for bit, and saves the rhs
+   call of every node at which a matrix is evaluated: the residual there
+   reuses its f. */
+static void
+test_rhs_jac (void)
+{
+  const double h = 2 * TS_PI / 100;
+  double ya[4], yc[4];
+  ts_kep_y0 (0.6, ya);
+  memcpy (yc, ya, sizeof ya);
+  sym_system sa = ts_system (2, ts_kep, ts_kep_jac, NULL);
+  sym_system sc = ts_system (2, ts_kep, ts_kep_jac, NULL);
+  sc.rhs_jac = kep_both;
+  sym_method_opts o = ts_opts (4, 3);
+  int st;
+  void *s1 = T->alloc (&sa, &o, &st), *s2 = T->alloc (&sc, &o, &st);
+  both_calls = both_nan_at = 0;
+  int st1 = ts_run_fixed (T, s1, &sa, 0.0, h, 1000, ya);
+  int st2 = ts_run_fixed (T, s2, &sc, 0.0, h, 1000, yc);
+  CHECK (st1 == 0 && st2 == 0 && ts_maxdiff (4, ya, yc) == 0.0,
+         "combined f and Df: statuses %d %d, differ by %.3g", st1, st2,
+         ts_maxdiff (4, ya, yc));
+  CHECK (sc.cnt.njac == sa.cnt.njac && both_calls == sc.cnt.njac
+         && sa.cnt.njac > 0 && sc.cnt.nrhs == sa.cnt.nrhs - sa.cnt.njac,
+         "combined: %ld rhs + %ld jac (%ld calls), separate %ld rhs + %ld "
+         "jac", sc.cnt.nrhs, sc.cnt.njac, both_calls, sa.cnt.nrhs,
+         sa.cnt.njac);
+  printf ("f with Df in one call: %.3f rhs + %.3f jac calls per step "
+          "(separate: %.3f + %.3f)\n", sc.cnt.nrhs / 1000.0,
+          sc.cnt.njac / 1000.0, sa.cnt.nrhs / 1000.0, sa.cnt.njac / 1000.0);
+  T->free (s1);
+  T->free (s2);
+  /* a NaN in Df is reported as one, with its time */
+  sym_system sn = ts_system (2, ts_kep, ts_kep_jac, NULL);
+  sn.rhs_jac = kep_both;
+  void *s3 = T->alloc (&sn, &o, &st);
+  ts_kep_y0 (0.6, yc);
+  both_calls = 0;
+  both_nan_at = 2;
+  st = T->step (s3, &sn, 0.0, h, yc, ya, NULL);
+  CHECK (st == SYM_NONFINITE && sn.fail_t > 0.0 && sn.fail_t < h,
+         "NaN in the combined Df: %d (%s) at t = %g", st,
+         sym_status_name (st), sn.fail_t);
+  both_nan_at = 0;
+  T->free (s3);
+}
+
 /* --------------------------------------------------------- error estimate */
 static void
 test_error_estimate (void)
@@ -764,6 +827,7 @@ main (void)
   test_known_methods ();
   test_symplectic ();
   test_jacobian_sources ();
+  test_rhs_jac ();
   test_error_estimate ();
   test_dense ();
   test_symmetric_and_predictor ();
