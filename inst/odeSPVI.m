@@ -86,7 +86,11 @@
 ## @code{HamiltonianHessFcn} (handle returning Hess(H)); the second output
 ## of @var{fcn}; finite differences of @var{fcn}.  The matrix is kept and
 ## reused while Newton converges fast.  @code{stats.jacobian_source} tells
-## which source was used.
+## which source was used.  With the second output of @var{fcn}, one call
+## with two outputs gives both the Hessian and f at a node, and the
+## residual there uses that f: @code{stats.npds} counts these calls and
+## @code{stats.nfevals} the calls with one output, so that their sum is
+## the number of calls of @var{fcn}.
 ## @item Vectorized
 ## @qcode{"on"}: @var{fcn} accepts a 1-by-k row of times and a 2d-by-k
 ## matrix of states and returns 2d-by-k; all quadrature nodes of a Newton

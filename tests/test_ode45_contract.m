@@ -491,6 +491,46 @@
 %! endfor
 
 %!test
+%! ## names and simple handles are called by name, other handles through
+%! ## feval: a handle to a subfunction calls the subfunction even where a
+%! ## function of the same name is on the path, and a handle to that
+%! ## function calls it even where a subfunction of that name is in scope
+%! d = tempname ();
+%! mkdir (d);
+%! unwind_protect
+%!   fid = fopen (fullfile (d, "symtest_rhs.m"), "w");
+%!   fputs (fid, "function dy = symtest_rhs (t, y)\n  dy = [y(2); -4*y(1)];\nendfunction\n");
+%!   fclose (fid);
+%!   fid = fopen (fullfile (d, "symtest_scoped.m"), "w");
+%!   fputs (fid, ["function [y, yh] = symtest_scoped (solver, o, fh)\n", ...
+%!                "  [~, y] = solver (@symtest_rhs, [0 1], [1; 0], o);\n", ...
+%!                "  [~, yh] = solver (fh, [0 1], [1; 0], o);\n", ...
+%!                "endfunction\n", ...
+%!                "function dy = symtest_rhs (t, y)\n", ...
+%!                "  dy = [y(2); -y(1)];\n", ...
+%!                "endfunction\n"]);
+%!   fclose (fid);
+%!   addpath (d);
+%!   o = symplecticset ("TimeStepSize", 1e-3);
+%!   for i = 1:3
+%!     ## the subfunction, and a handle made here to the file's function
+%!     [y, yh] = symtest_scoped (solvers{i}, o, @symtest_rhs);
+%!     assert (y(end, :), [cos(1), -sin(1)], 2e-3);
+%!     assert (yh(end, :), [cos(2), -2*sin(2)], 4e-3);
+%!     [~, y1] = solvers{i} (@symtest_rhs, [0 1], [1; 0], o);   # the file
+%!     [~, y2] = solvers{i} ("symtest_rhs", [0 1], [1; 0], o);
+%!     [~, y3] = solvers{i} (@(t, y) symtest_rhs (t, y), [0 1], [1; 0], o);
+%!     assert (y1(end, :), [cos(2), -2*sin(2)], 4e-3);
+%!     assert (y2, y1);
+%!     assert (y3, y1);
+%!   endfor
+%! unwind_protect_cleanup
+%!   rmpath (d);
+%!   confirm_recursive_rmdir (false, "local");
+%!   rmdir (d, "s");
+%! end_unwind_protect
+
+%!test
 %! ## tspan with more than two elements: rows exactly there, steps unchanged
 %! f = @(t, y) [y(2); -y(1)];
 %! ts = [0, 0.05, 1/3, 1, pi, 9.99, 10];

@@ -139,6 +139,20 @@
 %! assert (s4.y, s1.y, 1e-10);
 
 %!test
+%! ## with the Hessian as FCN's second output, the matrix and the residual
+%! ## at one point come from one call: the same steps, bit for bit, as with
+%! ## the same Hessian from HamiltonianHessFcn, one FCN call fewer per
+%! ## Hessian evaluation
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! o = symplecticset ("TimeStepSize", 2*pi/100);
+%! s2 = odeSPVI (@kepler, [0 4*pi], y0, o);
+%! s3 = odeSPVI (@kepler1, [0 4*pi], y0, symplecticset (o, "HamiltonianHessFcn", @kepler_hess));
+%! assert (s2.y, s3.y);
+%! assert (s2.stats.npds, s3.stats.npds);
+%! assert (s3.stats.npds > 0);
+%! assert (s2.stats.nfevals, s3.stats.nfevals - s3.stats.npds);
+
+%!test
 %! ## sol reports the pair and its order
 %! s = odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "Nodes", 4));
 %! assert ([s.Q_DoFs, s.Nodes, s.order], [5, 4, 8]);
