@@ -94,8 +94,9 @@
 ## and LU factorizations.
 ## @item Vectorized
 ## @qcode{"on"}: @var{fcn} accepts a 2d-by-k matrix of states with a 1-by-k
-## row of times (used by @code{odeSPVI}; @code{odeSE} evaluates one state at
-## a time).
+## row of times.  @code{odeSE} steps one state at a time; its
+## finite-difference Jacobians (no Jacobian or Hessian source) then take one
+## call for their 2d perturbed states instead of 2d calls.
 ## @end table
 ##
 ## A run that cannot go on (Newton fails with the fixed step or at the

@@ -407,6 +407,10 @@
 %! assert (numel (c1), s1.stats.nfevals);
 %! assert (s1.stats.nfevals < 0.6 * s0.stats.nfevals);
 %! assert (s1.stats.nstates, s0.stats.nstates);
+%! ## finite-difference matrices: the 2d perturbed states of all 3 nodes
+%! ## in one call
+%! assert (any (c1 == 12));
+%! assert (s1.stats.nfdevals * 12, s0.stats.nfdevals);
 %! ## adaptive: the same solution up to the round-off in the step size
 %! ## control (fcn's values differ in the last bit between the two forms)
 %! tt = linspace (0, 4*pi, 50);
@@ -419,6 +423,19 @@
 %! n1 = numel (CONTRACT_CALLS);
 %! assert (y1v, y0v, 1e-6);
 %! assert (n1 < 0.6 * n0);
+
+%!test
+%! ## a chain of d = 20 (more states per finite-difference call than the
+%! ## kept argument arrays): the same steps as single calls
+%! d = 20;  K = diag (2*ones (d, 1)) - diag (ones (d-1, 1), 1) - diag (ones (d-1, 1), -1);
+%! f = @(t, y) [y(d+1:end, :); -K * y(1:d, :) - y(1:d, :).^3];
+%! y0 = [0.3 * sin(pi * (1:d)' / (d+1)); zeros(d, 1)];
+%! o = symplecticset ("TimeStepSize", 0.05);
+%! s0 = odeSPVI (f, [0 2], y0, o);
+%! s1 = odeSPVI (f, [0 2], y0, symplecticset (o, "Vectorized", "on"));
+%! assert (s1.y, s0.y, 1e-13);
+%! assert (s1.stats.nfdevals * 2 * d * 3, s0.stats.nfdevals);
+%! assert (s1.stats.nstates, s0.stats.nstates);
 
 ## ------------------------------------------------------------ options
 %!test

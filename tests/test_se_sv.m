@@ -237,3 +237,19 @@
 %! [t, y] = odeSE (f, [1, -2], [cos(1); -sin(1)], odeset ("RelTol", 1e-6, "AbsTol", 1e-8));
 %! assert (t(end), -2);
 %! assert (y(end, :), [cos(-2), -sin(-2)], 1e-3);
+
+## --------------------------------------------------- Vectorized Jacobians
+%!test
+%! ## with Vectorized, a finite-difference Jacobian takes one call for its
+%! ## 2d perturbed states: the same steps, 2d times fewer calls for it
+%! f = @(t, y) [y(2,:) .* (1 + y(1,:).^2); -(y(2,:).^2 .* y(1,:) + y(1,:))];
+%! o = symplecticset ("TimeStepSize", 0.05);
+%! for solver = {@odeSE, @odeSV}
+%!   s0 = solver{1} (f, [0 5], [0.5; 0.2], o);
+%!   s1 = solver{1} (f, [0 5], [0.5; 0.2], symplecticset (o, "Vectorized", "on"));
+%!   assert (s1.y, s0.y, 1e-13);
+%!   assert (s0.stats.jacobian_source, "finite differences of FCN");
+%!   assert (s1.stats.nfdevals > 0);
+%!   assert (2 * s1.stats.nfdevals, s0.stats.nfdevals);
+%!   assert (s0.stats.nfevals - s1.stats.nfevals, s1.stats.nfdevals);
+%! endfor

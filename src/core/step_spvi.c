@@ -449,7 +449,9 @@ core_matrix (void *ctx, const double *x, double *M)
   else
     {
       /* Finite differences need f at the nodes: evaluate it once here
-         (one batch call), and the residual at this x reuses it. */
+         (one batch call), and the residual at this x reuses it.  With a
+         batch callback, the perturbed states of all nodes then go in one
+         more call. */
       if (! c->sys->jac)
         {
           if ((st = core_eval (c, x)))
@@ -457,14 +459,8 @@ core_matrix (void *ctx, const double *x, double *M)
         }
       else
         core_states (c, x);
-      for (int j = 0; j < m; j++)
-        {
-          st = sym_jac (c->sys, c->tj[j], c->Y + j * nn,
-                        c->sys->jac ? NULL : c->F + j * nn,
-                        c->A + j * nn * nn);
-          if (st)
-            return c->cb_fail = st;
-        }
+      if ((st = sym_jac_many (c->sys, m, c->tj, c->Y, c->F, c->A)))
+        return c->cb_fail = st;
     }
   /* keep them for the extrapolation (core_extrapolate): a new step's
      evaluation becomes the latest, a second one on the same step (a

@@ -110,6 +110,12 @@ int sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
                   double *dy);
 int sym_jac (sym_system *sys, double t, const double *y, const double *f0,
              double *df);
+/* Df at k states (the columns of y, times t, f0 their f: needed by the
+   finite differences) into k n-by-n blocks of df: sys->jac for each, or
+   forward differences with every perturbed state of all k in one batch
+   call when the system has rhs_batch. */
+int sym_jac_many (sym_system *sys, int k, const double *t, const double *y,
+                  const double *f0, double *df);
 /* f and Df at one state: one call of rhs_jac (counted in njac) if the
    system has it, else sym_rhs and sym_jac. */
 int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,

@@ -135,40 +135,76 @@ sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
   return SYM_SUCCESS;
 }
 
-/* Forward differences, one rhs call per column: the step balances
-   truncation (~ delta) against round-off (~ eps / delta). */
+/* Forward differences at k states (columns of y, times t, f0 their f):
+   df holds k n-by-n Jacobians.  The step of column c balances truncation
+   (~ delta) against round-off (~ eps / delta).  With a batch callback all
+   k n perturbed states go in one call, else one rhs call each; the
+   results are the same.  Counted in nfd (and nrhs). */
+static int
+jac_fd_many (sym_system *sys, int k, const double *t, const double *y,
+             const double *f0, double *df)
+{
+  const int n = 2 * sys->dim;
+  const int batch = sys->rhs_batch != NULL;
+  const size_t cols = (size_t) k * n;
+  const size_t ncw = batch ? cols : 1;   /* columns evaluated per call */
+  double *w = sym_malloc ((2 * ncw * n + 3 * cols) * sizeof (double));
+  if (! w)
+    return SYM_ENOMEM;
+  double *yp = w, *fp = w + ncw * n, *del = w + 2 * ncw * n;
+  double *tp = del + cols, *yv = tp + cols;   /* yv: the perturbed values */
+  const double sq = sqrt (DBL_EPSILON);
+  for (size_t c = 0; c < cols; c++)
+    {
+      const double *yj = y + (c / n) * n;
+      int i = (int) (c % n);
+      double d = sq * fmax (1.0, fabs (yj[i]));
+      volatile double yi = yj[i] + d;   /* exact representable step */
+      yv[c] = yi;
+      del[c] = yi - yj[i];
+      tp[c] = t[c / n];
+    }
+  long before = sys->cnt.nrhs;
+  int st = SYM_SUCCESS;
+  for (size_t c0 = 0; c0 < cols && ! st; c0 += ncw)
+    {
+      for (size_t c = c0; c < c0 + ncw; c++)
+        {
+          double *col = yp + (c - c0) * n;
+          memcpy (col, y + (c / n) * n, (size_t) n * sizeof (double));
+          col[c % n] = yv[c];
+        }
+      st = batch ? sym_rhs_many (sys, (int) ncw, tp + c0, yp, fp)
+                 : sym_rhs (sys, tp[c0], yp, fp);
+      for (size_t c = c0; c < c0 + ncw && ! st; c++)
+        {
+          const double *fc = fp + (c - c0) * n, *f0j = f0 + (c / n) * n;
+          double *dfc = df + (c / n) * n * n + (c % n) * n;
+          for (int i = 0; i < n; i++)
+            dfc[i] = (fc[i] - f0j[i]) / del[c];
+        }
+    }
+  sys->cnt.nfd += sys->cnt.nrhs - before;
+  sym_free (w);
+  return st;
+}
+
 static int
 jac_fd (sym_system *sys, double t, const double *y, const double *f0,
         double *df)
 {
+  if (f0)
+    return jac_fd_many (sys, 1, &t, y, f0, df);
   int n = 2 * sys->dim;
-  double *w = sym_malloc ((size_t) 3 * n * sizeof (double));
-  if (! w)
+  double *fb = sym_malloc ((size_t) n * sizeof (double));
+  if (! fb)
     return SYM_ENOMEM;
-  double *yp = w, *fp = w + n, *fb = w + 2 * n;
-  int st = SYM_SUCCESS;
   long before = sys->cnt.nrhs;
-  if (! f0)
-    {
-      st = sym_rhs (sys, t, y, fb);
-      f0 = fb;
-    }
-  memcpy (yp, y, (size_t) n * sizeof (double));
-  const double sq = sqrt (DBL_EPSILON);
-  for (int j = 0; j < n && ! st; j++)
-    {
-      double del = sq * fmax (1.0, fabs (y[j]));
-      volatile double yj = y[j] + del;   /* exact representable step */
-      del = yj - y[j];
-      yp[j] = yj;
-      st = sym_rhs (sys, t, yp, fp);
-      yp[j] = y[j];
-      if (! st)
-        for (int i = 0; i < n; i++)
-          df[i + (size_t) j * n] = (fp[i] - f0[i]) / del;
-    }
+  int st = sym_rhs (sys, t, y, fb);
   sys->cnt.nfd += sys->cnt.nrhs - before;
-  sym_free (w);
+  if (! st)
+    st = jac_fd_many (sys, 1, &t, y, fb, df);
+  sym_free (fb);
   return st;
 }
 
@@ -211,6 +247,22 @@ sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
       sys->fail_t = t;
       sys->fail_status = SYM_NONFINITE;
       return SYM_NONFINITE;
+    }
+  return SYM_SUCCESS;
+}
+
+int
+sym_jac_many (sym_system *sys, int k, const double *t, const double *y,
+              const double *f0, double *df)
+{
+  const size_t n = 2 * (size_t) sys->dim;
+  if (! sys->jac)
+    return jac_fd_many (sys, k, t, y, f0, df);
+  for (int j = 0; j < k; j++)
+    {
+      int st = sym_jac (sys, t[j], y + j * n, NULL, df + j * n * n);
+      if (st)
+        return st;
     }
   return SYM_SUCCESS;
 }

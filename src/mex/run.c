@@ -23,6 +23,7 @@ typedef struct {
   mxArray **args;
   int nargs;
   mxArray *batch_t[MAXBATCH + 1], *batch_y[MAXBATCH + 1];
+  int big_k;                 /* the k of batch_t[0], batch_y[0] */
   /* Jacobian */
   int jac_source;
   mxArray **jargs;           /* {handle, t, y, extras...} for Jacobian/Hess */
@@ -232,20 +233,27 @@ cb_rhs_batch (int k, const double *t, const double *y, double *dy,
               void *user)
 {
   ctx_t *c = user;
-  if (k > MAXBATCH)
+  /* argument arrays kept for each k up to MAXBATCH, and for the last
+     larger k (finite differences batch 2d Nodes states) */
+  int slot = k <= MAXBATCH ? k : 0;
+  if (slot == 0 && c->big_k != k)
     {
-      for (int j = 0; j < k; j++)
-        cb_rhs (t[j], y + (size_t) j * c->n, dy + (size_t) j * c->n, c);
-      return 0;
+      if (c->batch_t[0])
+        {
+          mxDestroyArray (c->batch_t[0]);
+          mxDestroyArray (c->batch_y[0]);
+        }
+      c->batch_t[0] = c->batch_y[0] = NULL;
+      c->big_k = k;
     }
-  if (! c->batch_t[k])
+  if (! c->batch_t[slot])
     {
-      c->batch_t[k] = mxCreateDoubleMatrix (1, k, mxREAL);
-      c->batch_y[k] = mxCreateDoubleMatrix (c->n, k, mxREAL);
+      c->batch_t[slot] = mxCreateDoubleMatrix (1, k, mxREAL);
+      c->batch_y[slot] = mxCreateDoubleMatrix (c->n, k, mxREAL);
     }
   mxArray *t1 = c->args[1], *y1 = c->args[2];
-  c->args[1] = c->batch_t[k];
-  c->args[2] = c->batch_y[k];
+  c->args[1] = c->batch_t[slot];
+  c->args[2] = c->batch_y[slot];
   memcpy (mxGetPr (c->args[1]), t, sizeof (double) * k);
   memcpy (mxGetPr (c->args[2]), y, sizeof (double) * c->n * k);
   mxArray *out[1] = { NULL };

@@ -79,6 +79,22 @@ cube_bad_res (void *ctx, const double *x, double *r)
   return 0;
 }
 
+/* nonsep for the columns of y, one call */
+static long batch_calls, batch_states;
+static int
+nonsep_batch (int k, const double *t, const double *y, double *dy, void *u)
+{
+  batch_calls++;
+  batch_states += k;
+  for (int j = 0; j < k; j++)
+    {
+      int st = nonsep (t[j], y + 2 * j, dy + 2 * j, u);
+      if (st)
+        return st;
+    }
+  return 0;
+}
+
 int
 main (void)
 {
@@ -124,6 +140,41 @@ main (void)
   for (int i = 0; i < 4; i++)
     e = fmax (e, fabs (df[i] - dfa[i]));
   CHECK (e < 1e-7, "fd jacobian error %.3g", e);
+  /* with a batch callback: the same Jacobians, bit for bit, from one
+     call per state (f given) or one call for all perturbed states of k
+     states (sym_jac_many); counted in nfd */
+  {
+    double dfb[4], ym[6] = { 0.3, -0.7, 1.1, 0.4, -2.0, 0.05 };
+    double tm[3] = { 0.0, 0.5, 1.0 }, fm[6], dfm[12], dfs[12];
+    for (int j = 0; j < 3; j++)
+      nonsep (tm[j], ym + 2 * j, fm + 2 * j, NULL);
+    sym_system sb = sys;
+    sb.rhs_batch = nonsep_batch;
+    memset (&sb.cnt, 0, sizeof sb.cnt);
+    batch_calls = batch_states = 0;
+    CHECK (sym_jac (&sb, 0, y, NULL, dfb) == 0
+           && memcmp (dfb, df, sizeof df) == 0, "batched fd jac");
+    CHECK (sb.cnt.nrhs == 2 && sb.cnt.nfd == 2 && batch_calls == 1
+           && batch_states == 2, "batched fd calls: %ld rhs, %ld fd, %ld "
+           "batch", sb.cnt.nrhs, sb.cnt.nfd, batch_calls);
+    memset (&sb.cnt, 0, sizeof sb.cnt);
+    batch_calls = batch_states = 0;
+    CHECK (sym_jac_many (&sb, 3, tm, ym, fm, dfm) == 0 && sb.cnt.nrhs == 1
+           && sb.cnt.nfd == 1 && sb.cnt.nrhs_states == 6
+           && batch_calls == 1 && batch_states == 6, "jac_many batched: "
+           "%ld calls", sb.cnt.nrhs);
+    sym_system ss = sys;
+    memset (&ss.cnt, 0, sizeof ss.cnt);
+    CHECK (sym_jac_many (&ss, 3, tm, ym, fm, dfs) == 0 && ss.cnt.nrhs == 6
+           && ss.cnt.nfd == 6 && memcmp (dfs, dfm, sizeof dfm) == 0,
+           "jac_many single calls: %ld, same values", ss.cnt.nrhs);
+    /* a NaN in a perturbed state's f is reported with its time */
+    bad_mode = 1;
+    memset (&sb.cnt, 0, sizeof sb.cnt);
+    CHECK (sym_jac_many (&sb, 3, tm, ym, fm, dfm) == SYM_NONFINITE
+           && sb.fail_t == 0.0, "jac_many NaN: fail_t %g", sb.fail_t);
+    bad_mode = 0;
+  }
   sys.jac = nonsep_jac;
   CHECK (sym_jac (&sys, 0, y, NULL, df) == 0 && sys.cnt.njac == 1
          && df[2] == dfa[2], "analytic jac");
