@@ -86,6 +86,15 @@ callback_status (sym_system *sys, double t, int st)
   return st > 0 ? SYM_RECOVERABLE : SYM_ECALLBACK;
 }
 
+/* A NaN or Inf in a callback's values at t: remembered, reported. */
+static int
+nonfinite_at (sym_system *sys, double t)
+{
+  sys->fail_t = t;
+  sys->fail_status = SYM_NONFINITE;
+  return SYM_NONFINITE;
+}
+
 int
 sym_rhs (sym_system *sys, double t, const double *y, double *dy)
 {
@@ -95,13 +104,7 @@ sym_rhs (sym_system *sys, double t, const double *y, double *dy)
   int st = callback_status (sys, t, sys->rhs (t, y, dy, sys->user));
   if (st)
     return st;
-  if (! all_finite (n, dy))
-    {
-      sys->fail_t = t;
-      sys->fail_status = SYM_NONFINITE;
-      return SYM_NONFINITE;
-    }
-  return SYM_SUCCESS;
+  return all_finite (n, dy) ? SYM_SUCCESS : nonfinite_at (sys, t);
 }
 
 int
@@ -119,11 +122,7 @@ sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
         return st;
       for (int j = 0; j < k; j++)
         if (! all_finite (n, dy + (size_t) j * n))
-          {
-            sys->fail_t = t[j];
-            sys->fail_status = SYM_NONFINITE;
-            return SYM_NONFINITE;
-          }
+          return nonfinite_at (sys, t[j]);
       return SYM_SUCCESS;
     }
   for (int j = 0; j < k; j++)
@@ -219,13 +218,7 @@ sym_jac (sym_system *sys, double t, const double *y, const double *f0,
   int st = callback_status (sys, t, sys->jac (t, y, df, sys->user));
   if (st)
     return st;
-  if (! all_finite (n * n, df))
-    {
-      sys->fail_t = t;
-      sys->fail_status = SYM_NONFINITE;
-      return SYM_NONFINITE;
-    }
-  return SYM_SUCCESS;
+  return all_finite (n * n, df) ? SYM_SUCCESS : nonfinite_at (sys, t);
 }
 
 int
@@ -242,13 +235,8 @@ sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
   int st = callback_status (sys, t, sys->rhs_jac (t, y, dy, df, sys->user));
   if (st)
     return st;
-  if (! all_finite (n, dy) || ! all_finite (n * n, df))
-    {
-      sys->fail_t = t;
-      sys->fail_status = SYM_NONFINITE;
-      return SYM_NONFINITE;
-    }
-  return SYM_SUCCESS;
+  return all_finite (n, dy) && all_finite (n * n, df)
+         ? SYM_SUCCESS : nonfinite_at (sys, t);
 }
 
 int
