@@ -145,15 +145,16 @@ handle_info (const mxArray *f, char *type, size_t tlen, char *fn,
 }
 
 /* The name f can be called by, or "" when f must go through feval.  A
-   call by name skips feval's own call: measured 1.5-2.5 us less per call
-   (of 14-20 us) on Kepler's fcn.  A name is looked up where the solver
-   was called from (a subfunction or private function there comes first),
-   a simple handle @name from anywhere (it is looked up at each call, but
-   skipping those): so a function's name is called by name, and a simple
-   handle only when a handle made from its name here is simple too (no
-   subfunction or private function of that name in the caller's scope).
-   Other handles (anonymous, to subfunctions or private functions) go
-   through feval. */
+   call by name skips feval's own call: measured 2-6 us less per call (of
+   18-25 us) on Kepler's fcn (bench B0).  A call by name looks the name up
+   in the scope the solver was called from, where a subfunction or private
+   function of that name comes first; a simple handle @name looks it up
+   among the functions visible everywhere.  So a function's name is called
+   by name (feval would look it up the same way), a simple handle only when
+   a handle made from its name in the caller's scope is simple too (no
+   subfunction or private function of that name there), and all other
+   handles (anonymous, to subfunctions, to private functions) through
+   feval. */
 static void
 direct_name (const mxArray *f, char *name, size_t len)
 {
