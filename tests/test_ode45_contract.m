@@ -36,6 +36,12 @@
 %!  dy = [y(3:4, :); -q ./ r.^3];
 %!endfunction
 
+%!function [dy, ddy] = kepler_hess2 (t, y)
+%!  q = y(1:2);  r = norm (q);
+%!  dy = [y(3:4); -q / r^3];
+%!  ddy = [(eye (2) - 3 * (q * q.') / r^2) / r^3, zeros(2); zeros(2), eye(2)];
+%!endfunction
+
 %!function dy = contract_osc (t, y)
 %!  dy = [y(2); -y(1)];
 %!endfunction
@@ -387,6 +393,11 @@
 %!   txt = evalc ("[t, y] = solvers{i} (f, [0 2], [1; 0], symplecticset (o, 'Stats', 'off'));");
 %!   assert (isempty (txt));
 %! endfor
+%! ## the Hessian as second output: odeSPVI's calls that give it give f too
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! txt = evalc ("sol = odeSPVI (@kepler_hess2, [0 1], y0, o);");
+%! assert (! isempty (strfind (txt, sprintf ("Hessian evaluations: %d (source: second output of FCN (Hessian), calls that also give f;", sol.stats.npds))));
+%! assert (sol.stats.npds > 0);
 
 ## ------------------------------------------------------------ Vectorized
 %!test

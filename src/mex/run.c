@@ -918,10 +918,11 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
       mexPrintf ("Number of failed attempts:  %ld\n", sys.cnt.nfailed);
       mexPrintf ("Number of function calls:   %ld\n", sys.cnt.nrhs);
       mexPrintf ("Number of Newton iterations: %ld\n", sys.cnt.nnewton);
-      mexPrintf ("Number of Jacobian/Hessian evaluations: %ld (source: %s; "
+      mexPrintf ("Number of Jacobian/Hessian evaluations: %ld (source: %s%s; "
                  "%ld function calls for finite differences)\n",
                  sys.cnt.njac, jac_source_name (c->jac_source),
-                 sys.cnt.nfd);
+                 sys.rhs_jac && solver->is_spvi
+                 ? ", calls that also give f" : "", sys.cnt.nfd);
       mexPrintf ("Number of LU decompositions: %ld\n", sys.cnt.nlu);
       mexPrintf ("Number of linear solves:     %ld\n", sys.cnt.nsolve);
     }
