@@ -57,7 +57,7 @@ secs=$(($(date +%s) - start))
 
 # Split the log into error records (blank "==PID== " lines separate them)
 # and count those whose stack mentions our code.
-ours='odeSE\.mex|odeSV\.mex|odeSPVI\.mex|mexFunction|symmex_|[^a-z_]sym_[a-z_]+ |(run|options|control|driver|newton|quadrature|system|step_se|step_sv|step_spvi|odeSE|odeSV|odeSPVI)\.c:'
+ours='odeSE\.mex|odeSV\.mex|odeSPVI\.mex|mexFunction|symmex_|[^a-z_]sym_[a-z_]+ |(run|options|control|driver|newton|quadrature|system|step_se|step_sv|step_spvi|steprec|odeSE|odeSV|odeSPVI)\.c:'
 kinds='Invalid (read|write|free)|Conditional jump|Use of uninitialised|Syscall param|Mismatched free|Source and destination overlap|Argument .* of function|Uninitialised value'
 report=$(awk -v ours="$ours" -v kinds="$kinds" '
   function flush() {

@@ -45,6 +45,16 @@ function status = memcheck_run ()
     [t, y] = s (osc, [0 1], [1 0], struct ("Jacobian", @(t, y) [0 1; -1 0]));
     [t, y] = s (osc, [0 1], [1 0], struct ("HamiltonianHessFcn", @(t, y) eye (2)));
     [t, y] = s (@mc_hess2, [0 1], [1 0]);
+    ## called by name: a simple handle and a name, with the Hessian
+    [t, y] = s (@memcheck_osc, [0 1], [1 0], struct ("TimeStepSize", 0.1));
+    [t2, y2] = s ("memcheck_osc", [0 1], [1 0], struct ("TimeStepSize", 0.1));
+    nbad += check (isequal (y, y2) && abs (y(end,1) - cos (1)) < 5e-2, name, "by name");
+    ## Vectorized finite differences of more states than the kept arrays
+    d = 12;
+    [t, y] = s (@(t, y) [y(d+1:end, :); -y(1:d, :).^3], [0 0.2], ...
+                [0.1 * ones(d, 1); zeros(d, 1)], ...
+                struct ("TimeStepSize", 0.1, "Vectorized", "on"));
+    nbad += check (numel (t) == 3 && all (isfinite (y(:))), name, "vectorized FD, d = 12");
     [t, y] = s (kep, [0 1], y0k, struct ("Separable", "on", "TimeStepSize", 0.05));
     [t, y] = s (@(t, y) [y(2,:); -y(1,:)], [0 1], [1 0], struct ("Vectorized", "on"));
     nbad += check (abs (y(end,1) - cos (1)) < 5e-2, name, "vectorized");
