@@ -134,6 +134,8 @@ sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
   return SYM_SUCCESS;
 }
 
+#define FD_BATCH_DOUBLES ((size_t) 1 << 19)
+
 /* Forward differences at k states (columns of y, times t, f0 their f):
    df holds k n-by-n Jacobians.  The step of column c balances truncation
    (~ delta) against round-off (~ eps / delta).  With a batch callback all
@@ -146,7 +148,12 @@ jac_fd_many (sym_system *sys, int k, const double *t, const double *y,
   const int n = 2 * sys->dim;
   const int batch = sys->rhs_batch != NULL;
   const size_t cols = (size_t) k * n;
-  const size_t ncw = batch ? cols : 1;   /* columns evaluated per call */
+  /* columns evaluated per call: all of them with a batch callback, up to
+     FD_BATCH_DOUBLES values of y in one call (a chain of d = 300 at 3
+     nodes has 1800 columns of 600) */
+  size_t ncw = batch ? cols : 1;
+  if (ncw * n > FD_BATCH_DOUBLES)
+    ncw = FD_BATCH_DOUBLES / n > 0 ? FD_BATCH_DOUBLES / n : 1;
   double *w = sym_malloc ((2 * ncw * n + 3 * cols) * sizeof (double));
   if (! w)
     return SYM_ENOMEM;
@@ -167,15 +174,16 @@ jac_fd_many (sym_system *sys, int k, const double *t, const double *y,
   int st = SYM_SUCCESS;
   for (size_t c0 = 0; c0 < cols && ! st; c0 += ncw)
     {
-      for (size_t c = c0; c < c0 + ncw; c++)
+      size_t c1 = c0 + ncw < cols ? c0 + ncw : cols;
+      for (size_t c = c0; c < c1; c++)
         {
           double *col = yp + (c - c0) * n;
           memcpy (col, y + (c / n) * n, (size_t) n * sizeof (double));
           col[c % n] = yv[c];
         }
-      st = batch ? sym_rhs_many (sys, (int) ncw, tp + c0, yp, fp)
+      st = batch ? sym_rhs_many (sys, (int) (c1 - c0), tp + c0, yp, fp)
                  : sym_rhs (sys, tp[c0], yp, fp);
-      for (size_t c = c0; c < c0 + ncw && ! st; c++)
+      for (size_t c = c0; c < c1 && ! st; c++)
         {
           const double *fc = fp + (c - c0) * n, *f0j = f0 + (c / n) * n;
           double *dfc = df + (c / n) * n * n + (c % n) * n;

@@ -79,6 +79,31 @@ cube_bad_res (void *ctx, const double *x, double *r)
   return 0;
 }
 
+/* a linear chain of CH_D unit masses, fixed ends: f_q = p, f_p = -K q */
+#define CH_D 256
+static int
+chain (double t, const double *y, double *dy, void *u)
+{
+  (void) t; (void) u;
+  for (int i = 0; i < CH_D; i++)
+    {
+      double l = i > 0 ? y[i - 1] : 0.0, r = i < CH_D - 1 ? y[i + 1] : 0.0;
+      dy[i] = y[CH_D + i];
+      dy[CH_D + i] = l - 2.0 * y[i] + r;
+    }
+  return 0;
+}
+
+static long chain_calls;
+static int
+chain_batch (int k, const double *t, const double *y, double *dy, void *u)
+{
+  chain_calls++;
+  for (int j = 0; j < k; j++)
+    chain (t[j], y + (size_t) 2 * CH_D * j, dy + (size_t) 2 * CH_D * j, u);
+  return 0;
+}
+
 /* nonsep for the columns of y, one call */
 static long batch_calls, batch_states;
 static int
@@ -174,6 +199,54 @@ main (void)
     CHECK (sym_jac_many (&sb, 3, tm, ym, fm, dfm) == SYM_NONFINITE
            && sb.fail_t == 0.0, "jac_many NaN: fail_t %g", sb.fail_t);
     bad_mode = 0;
+  }
+  /* a large batch goes in parts: 3 states of n = 512, 1536 perturbed
+     states of 512 values, at most 2^19 values a call: 2 calls */
+  {
+    const size_t n = 2 * CH_D, k = 3;
+    double *yc = malloc (k * n * sizeof (double));
+    double *fc = malloc (k * n * sizeof (double));
+    double *j1 = malloc (k * n * n * sizeof (double));
+    double *j2 = malloc (k * n * n * sizeof (double));
+    double tc[3] = { 0.0, 0.1, 0.2 };
+    for (size_t i = 0; i < k * n; i++)
+      yc[i] = sin (0.37 * (double) i);
+    for (size_t j = 0; j < k; j++)
+      chain (tc[j], yc + j * n, fc + j * n, NULL);
+    sym_system cb, cs;
+    memset (&cb, 0, sizeof cb);
+    cb.dim = CH_D;
+    cb.rhs = chain;
+    cs = cb;
+    cb.rhs_batch = chain_batch;
+    chain_calls = 0;
+    CHECK (sym_jac_many (&cb, (int) k, tc, yc, fc, j1) == 0
+           && chain_calls == 2 && cb.cnt.nfd == 2
+           && cb.cnt.nrhs_states == (long) (k * n),
+           "chain: %ld batch calls, %ld states", chain_calls,
+           cb.cnt.nrhs_states);
+    CHECK (sym_jac_many (&cs, (int) k, tc, yc, fc, j2) == 0
+           && cs.cnt.nrhs == (long) (k * n)
+           && memcmp (j1, j2, k * n * n * sizeof (double)) == 0,
+           "chain: batched in parts vs single calls");
+    /* and the values: Df = [0 I; -K 0] to the differences' accuracy */
+    double err = 0.0;
+    for (size_t c = 0; c < n; c++)
+      for (size_t r = 0; r < n; r++)
+        {
+          double ex = 0.0;
+          if (r < CH_D && c == r + CH_D)
+            ex = 1.0;
+          else if (r >= CH_D && c < CH_D)
+            ex = c == r - CH_D ? -2.0
+                 : (c + 1 == r - CH_D || c == r - CH_D + 1) ? 1.0 : 0.0;
+          err = fmax (err, fabs (j1[n * n + c * n + r] - ex));
+        }
+    CHECK (err < 1e-6, "chain Jacobian error %.3g", err);
+    free (yc);
+    free (fc);
+    free (j1);
+    free (j2);
   }
   sys.jac = nonsep_jac;
   CHECK (sym_jac (&sys, 0, y, NULL, df) == 0 && sys.cnt.njac == 1
