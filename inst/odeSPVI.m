@@ -94,9 +94,9 @@
 ## @item Vectorized
 ## @qcode{"on"}: @var{fcn} accepts a 1-by-k row of times and a 2d-by-k
 ## matrix of states and returns 2d-by-k; all quadrature nodes of a Newton
-## iteration are then evaluated in one call, and finite-difference
-## matrices (no Jacobian or Hessian source) take one call for the 2d
-## perturbed states of all nodes.  The Hessian (from any source) is
+## iteration are then evaluated in one call, and a finite-difference
+## matrix (no Jacobian or Hessian source) takes one call for all nodes
+## and their 2d perturbed states each.  The Hessian (from any source) is
 ## asked for one node at a time.  For long runs this is the fastest
 ## form: Kepler (e = 0.6) over 1000 periods with Nodes = 8, Q_DoFs = 9
 ## and TimeStepSize = 2*pi/30 keeps the energy error at 3e-12 in 1/32 to

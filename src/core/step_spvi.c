@@ -429,36 +429,38 @@ core_matrix (void *ctx, const double *x, double *M)
      (m times fewer jac calls per matrix, but slower contraction and, on
      Kepler (4,3), as many calls in all); the exact matrix also keeps the
      full-Newton fallback quadratic. */
-  if (c->sys->rhs_jac)
+  const size_t nb = (size_t) c->N * sizeof (double);
+  const int fhere = c->fvalid && memcmp (c->xf, x, nb) == 0;
+  if (c->sys->rhs_jac || (! c->sys->jac && ! fhere))
     {
-      /* f comes with the Jacobians (the Hessian as FCN's second output):
-         the residual at this x, which follows, reuses it.  Measured on
-         Kepler (4,3), h = 2 pi/100: 0.57 fewer rhs calls per step. */
-      size_t nb = (size_t) c->N * sizeof (double);
-      if (! (c->fvalid && memcmp (c->xf, x, nb) == 0))
+      /* f comes with the Jacobians: from the same calls (the Hessian as
+         FCN's second output), or for finite differences from the call of
+         the perturbed states (one batch, or the m calls before them); the
+         residual at this x, which follows, reuses it.  Measured on Kepler
+         (4,3), h = 2 pi/100: with the Hessian 0.57 fewer rhs calls per
+         step; with Vectorized finite differences one call fewer per
+         matrix, 0.19 per step. */
+      if (! fhere)
         core_eval_shift (c, x);
       c->fvalid = 0;
       core_states (c, x);
-      for (int j = 0; j < m; j++)
-        if ((st = sym_rhs_jac (c->sys, c->tj[j], c->Y + j * nn,
-                               c->F + j * nn, c->A + j * nn * nn)))
-          return c->cb_fail = st;
+      if (c->sys->rhs_jac)
+        {
+          for (int j = 0; j < m; j++)
+            if ((st = sym_rhs_jac (c->sys, c->tj[j], c->Y + j * nn,
+                                   c->F + j * nn, c->A + j * nn * nn)))
+              return c->cb_fail = st;
+        }
+      else if ((st = sym_rhs_jac_many (c->sys, m, c->tj, c->Y, c->F,
+                                       c->A)))
+        return c->cb_fail = st;
       memcpy (c->xf, x, nb);
       c->fvalid = 1;
     }
   else
     {
-      /* Finite differences need f at the nodes: evaluate it once here
-         (one batch call), and the residual at this x reuses it.  With a
-         batch callback, the perturbed states of all nodes then go in one
-         more call. */
-      if (! c->sys->jac)
-        {
-          if ((st = core_eval (c, x)))
-            return c->cb_fail = st;
-        }
-      else
-        core_states (c, x);
+      /* the Jacobian callback, or finite differences from the F at x */
+      core_states (c, x);
       if ((st = sym_jac_many (c->sys, m, c->tj, c->Y, c->F, c->A)))
         return c->cb_fail = st;
     }

@@ -116,6 +116,12 @@ int sym_jac (sym_system *sys, double t, const double *y, const double *f0,
    call when the system has rhs_batch. */
 int sym_jac_many (sym_system *sys, int k, const double *t, const double *y,
                   const double *f0, double *df);
+/* f and Df at k states (into f and k n-by-n blocks of df): sym_rhs_many
+   and sym_jac_many, except that finite differences with a batch callback
+   evaluate the states and their perturbed states in one call (when all
+   fit in one).  rhs_jac is not used. */
+int sym_rhs_jac_many (sym_system *sys, int k, const double *t,
+                      const double *y, double *f, double *df);
 /* f and Df at one state: one call of rhs_jac (counted in njac) if the
    system has it, else sym_rhs and sym_jac. */
 int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,

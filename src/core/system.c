@@ -140,10 +140,12 @@ sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
    df holds k n-by-n Jacobians.  The step of column c balances truncation
    (~ delta) against round-off (~ eps / delta).  With a batch callback all
    k n perturbed states go in one call, else one rhs call each; the
-   results are the same.  Counted in nfd (and nrhs). */
+   results are the same.  With fout instead of f0, the k states' own f are
+   evaluated too, into fout: with a batch callback in the same call as the
+   perturbed states when all fit in one.  Counted in nfd (and nrhs). */
 static int
 jac_fd_many (sym_system *sys, int k, const double *t, const double *y,
-             const double *f0, double *df)
+             const double *f0, double *fout, double *df)
 {
   const int n = 2 * sys->dim;
   const int batch = sys->rhs_batch != NULL;
@@ -154,12 +156,31 @@ jac_fd_many (sym_system *sys, int k, const double *t, const double *y,
   size_t ncw = batch ? cols : 1;
   if (ncw * n > FD_BATCH_DOUBLES)
     ncw = FD_BATCH_DOUBLES / n > 0 ? FD_BATCH_DOUBLES / n : 1;
-  double *w = sym_malloc ((2 * ncw * n + 3 * cols) * sizeof (double));
+  /* the states' own f: leading columns of the one call, or a call first */
+  const size_t nb = fout && batch && (cols + k) * n <= FD_BATCH_DOUBLES
+                    ? (size_t) k : 0;
+  long before = sys->cnt.nrhs;
+  if (fout && ! nb)
+    {
+      int st = sym_rhs_many (sys, k, t, y, fout);
+      if (st)
+        return st;
+      before = sys->cnt.nrhs;
+    }
+  if (fout)
+    f0 = fout;
+  double *w = sym_malloc ((2 * (ncw + nb) * n + 3 * cols + nb)
+                          * sizeof (double));
   if (! w)
     return SYM_ENOMEM;
-  double *yp = w, *fp = w + ncw * n, *del = w + 2 * ncw * n;
-  double *tp = del + cols, *yv = tp + cols;   /* yv: the perturbed values */
+  double *yp = w, *fp = w + (ncw + nb) * n, *del = w + 2 * (ncw + nb) * n;
+  double *tp = del + cols, *yv = tp + cols + nb;   /* yv: perturbed values */
   const double sq = sqrt (DBL_EPSILON);
+  for (size_t j = 0; j < nb; j++)
+    {
+      memcpy (yp + j * n, y + j * n, (size_t) n * sizeof (double));
+      tp[j] = t[j];
+    }
   for (size_t c = 0; c < cols; c++)
     {
       const double *yj = y + (c / n) * n;
@@ -168,24 +189,28 @@ jac_fd_many (sym_system *sys, int k, const double *t, const double *y,
       volatile double yi = yj[i] + d;   /* exact representable step */
       yv[c] = yi;
       del[c] = yi - yj[i];
-      tp[c] = t[c / n];
+      tp[nb + c] = t[c / n];
     }
-  long before = sys->cnt.nrhs;
   int st = SYM_SUCCESS;
   for (size_t c0 = 0; c0 < cols && ! st; c0 += ncw)
     {
       size_t c1 = c0 + ncw < cols ? c0 + ncw : cols;
+      size_t lead = c0 == 0 ? nb : 0;   /* the states themselves, first */
+      double *ypc = yp + lead * n, *fpc = fp + lead * n;
       for (size_t c = c0; c < c1; c++)
         {
-          double *col = yp + (c - c0) * n;
+          double *col = ypc + (c - c0) * n;
           memcpy (col, y + (c / n) * n, (size_t) n * sizeof (double));
           col[c % n] = yv[c];
         }
-      st = batch ? sym_rhs_many (sys, (int) (c1 - c0), tp + c0, yp, fp)
-                 : sym_rhs (sys, tp[c0], yp, fp);
+      st = batch ? sym_rhs_many (sys, (int) (c1 - c0 + lead),
+                                 tp + nb + c0 - lead, yp, fp)
+                 : sym_rhs (sys, tp[nb + c0], yp, fp);
+      if (! st && lead)
+        memcpy (fout, fp, lead * n * sizeof (double));
       for (size_t c = c0; c < c1 && ! st; c++)
         {
-          const double *fc = fp + (c - c0) * n, *f0j = f0 + (c / n) * n;
+          const double *fc = fpc + (c - c0) * n, *f0j = f0 + (c / n) * n;
           double *dfc = df + (c / n) * n * n + (c % n) * n;
           for (int i = 0; i < n; i++)
             dfc[i] = (fc[i] - f0j[i]) / del[c];
@@ -201,7 +226,7 @@ jac_fd (sym_system *sys, double t, const double *y, const double *f0,
         double *df)
 {
   if (f0)
-    return jac_fd_many (sys, 1, &t, y, f0, df);
+    return jac_fd_many (sys, 1, &t, y, f0, NULL, df);
   int n = 2 * sys->dim;
   double *fb = sym_malloc ((size_t) n * sizeof (double));
   if (! fb)
@@ -210,7 +235,7 @@ jac_fd (sym_system *sys, double t, const double *y, const double *f0,
   int st = sym_rhs (sys, t, y, fb);
   sys->cnt.nfd += sys->cnt.nrhs - before;
   if (! st)
-    st = jac_fd_many (sys, 1, &t, y, fb, df);
+    st = jac_fd_many (sys, 1, &t, y, fb, NULL, df);
   sym_free (fb);
   return st;
 }
@@ -253,7 +278,7 @@ sym_jac_many (sym_system *sys, int k, const double *t, const double *y,
 {
   const size_t n = 2 * (size_t) sys->dim;
   if (! sys->jac)
-    return jac_fd_many (sys, k, t, y, f0, df);
+    return jac_fd_many (sys, k, t, y, f0, NULL, df);
   for (int j = 0; j < k; j++)
     {
       int st = sym_jac (sys, t[j], y + j * n, NULL, df + j * n * n);
@@ -261,4 +286,14 @@ sym_jac_many (sym_system *sys, int k, const double *t, const double *y,
         return st;
     }
   return SYM_SUCCESS;
+}
+
+int
+sym_rhs_jac_many (sym_system *sys, int k, const double *t, const double *y,
+                  double *f, double *df)
+{
+  if (! sys->jac)
+    return jac_fd_many (sys, k, t, y, NULL, f, df);
+  int st = sym_rhs_many (sys, k, t, y, f);
+  return st ? st : sym_jac_many (sys, k, t, y, f, df);
 }

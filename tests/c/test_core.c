@@ -193,6 +193,23 @@ main (void)
     CHECK (sym_jac_many (&ss, 3, tm, ym, fm, dfs) == 0 && ss.cnt.nrhs == 6
            && ss.cnt.nfd == 6 && memcmp (dfs, dfm, sizeof dfm) == 0,
            "jac_many single calls: %ld, same values", ss.cnt.nrhs);
+    /* f and Df together: with the batch callback one call for the 3
+       states and their 6 perturbed states; the same numbers */
+    double fr[6], dfr[12];
+    memset (&sb.cnt, 0, sizeof sb.cnt);
+    batch_calls = batch_states = 0;
+    CHECK (sym_rhs_jac_many (&sb, 3, tm, ym, fr, dfr) == 0
+           && batch_calls == 1 && batch_states == 9 && sb.cnt.nfd == 1
+           && memcmp (fr, fm, sizeof fm) == 0
+           && memcmp (dfr, dfs, sizeof dfs) == 0,
+           "rhs_jac_many batched: %ld calls of %ld states", batch_calls,
+           batch_states);
+    memset (&ss.cnt, 0, sizeof ss.cnt);
+    CHECK (sym_rhs_jac_many (&ss, 3, tm, ym, fr, dfr) == 0
+           && ss.cnt.nrhs == 9 && ss.cnt.nfd == 6
+           && memcmp (fr, fm, sizeof fm) == 0
+           && memcmp (dfr, dfs, sizeof dfs) == 0,
+           "rhs_jac_many single calls: %ld", ss.cnt.nrhs);
     /* a NaN in a perturbed state's f is reported with its time */
     bad_mode = 1;
     memset (&sb.cnt, 0, sizeof sb.cnt);
