@@ -100,7 +100,7 @@
 ## asked for one node at a time.  For long runs this is the fastest
 ## form: Kepler (e = 0.6) over 1000 periods with Nodes = 8, Q_DoFs = 9
 ## and TimeStepSize = 2*pi/30 keeps the energy error at 3e-12 in 1/32 to
-## 1/46 of the time @code{ode45} needs at RelTol = AbsTol = 1e-10, whose
+## 1/50 of the time @code{ode45} needs at RelTol = AbsTol = 1e-10, whose
 ## energy error grows linearly (8.5e-9 after 100 periods;
 ## @file{bench/run_benchmarks.m}, P5).
 ## @item NewtonTol, MaxNewtonIterations
