@@ -4,7 +4,7 @@
 # the user's function (samples under mexCallMATLAB, all of a call: the
 # arguments in, the function, the results out).  Both come from one run,
 # so the load of the machine, which drifts by tens of per cent over
-# seconds, cancels.  Needs perf; prints a line either way, fails never.
+# seconds, largely cancels.  Needs perf; prints a line either way, fails never.
 #
 #   sh bench/p3_profile.sh      (from the top directory, after make)
 

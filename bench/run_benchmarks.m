@@ -140,7 +140,7 @@ rows_(end+1, :) = {"P3", "wall time / (callbacks x callback cost, with the Hessi
                 sprintf("%.2f (Vectorized: %.2f ms/step)", over, 1e3 * t_vec / solv.stats.nsteps), "<= 1.2"};
 
 ## P3 by sampling (bench/p3_profile.sh, needs perf): the same ratio from
-## one run, immune to the machine's drifting load
+## one run, little affected by the machine's drifting load
 [~, p3p] = system (sprintf ("sh '%s'", fullfile (here, "p3_profile.sh")));
 p3p = strtrim (strrep (p3p, "p3_profile: ", ""));
 printf ("P3 sampled: %s\n", p3p);
