@@ -9,7 +9,8 @@
    For F = 0 this is the symplectic Euler method; with the forcing F in f_p
    it is the discrete Lagrange-d'Alembert (forced) variational integrator.
 
-   Implicit solve: simplified Newton (newton.c) on the d unknowns P,
+   Implicit solve (sym_kick_solve of steprec.c, shared with Stormer-Verlet
+   with h/2 for h): simplified Newton (newton.c) on the d unknowns P,
      G(P) = P - p_k - h f_p(t_k, q_k, P),   G'(P) ~ I - h A_pp(t_k, q_k, P),
    A_pp = d f_p / d p from sym_jac.
    - Start: P0 = p_k + h f_p(t_k, y_k) when f(t_k, y_k) is known (FSAL),
@@ -64,42 +65,7 @@ typedef struct {
   sym_kept kn;           /* Newton for p_{k+1} */
   double *block;         /* the one allocation holding the arrays */
   double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
-  /* the step being solved (for the Newton callbacks) */
-  sym_system *sys;
-  double tk, hk;
-  const double *yk;
 } se_state;
-
-/* G(P) = P - p_k - h f_p(t_k, q_k, P); f at [q_k; P] stays in the cache. */
-static int
-se_residual (void *ctx, const double *x, double *r)
-{
-  se_state *s = ctx;
-  const int d = s->d;
-  int st = sym_fcache_f (&s->fc, s->sys, s->tk, s->yk, x);
-  if (st)
-    return st;
-  for (int i = 0; i < d; i++)
-    r[i] = x[i] - s->yk[d + i] - s->hk * s->fc.fw[d + i];
-  return SYM_SUCCESS;
-}
-
-/* G'(P) ~ I - h A_pp at [q_k; P]. */
-static int
-se_matrix (void *ctx, const double *x, double *a)
-{
-  se_state *s = ctx;
-  const int d = s->d, n = s->n;
-  int st = sym_fcache_jac (&s->fc, s->sys, s->tk, s->yk, x);
-  if (st)
-    return st;
-  for (int j = 0; j < d; j++)
-    for (int i = 0; i < d; i++)
-      a[i + (size_t) j * d] = (i == j ? 1.0 : 0.0)
-        - s->hk * s->fc.jw[(d + i) + (size_t) (d + j) * n];
-  sym_kept_built (&s->kn, s->hk);
-  return SYM_SUCCESS;
-}
 
 static void se_free (void *state);
 
@@ -131,7 +97,7 @@ se_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   /* records, f cache, and x, scale, rv: 3d */
   size_t len = sym_recs_len (n, 0) + sym_fcache_len (d) + 3 * (size_t) d;
   s->block = sym_calloc (len, sizeof (double));
-  if (! s->block || sym_newton_init (&s->kn.nw, d))
+  if (! s->block || sym_kept_init (&s->kn, d, opts))
     {
       se_free (s);
       *status = SYM_ENOMEM;
@@ -145,10 +111,6 @@ se_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   s->x = w; w += d;
   s->scale = w; w += d;
   s->rv = w;
-  if (opts && opts->newton_tol > 0)
-    s->kn.nw.tol = opts->newton_tol;
-  if (opts && opts->max_newton > 0)
-    s->kn.nw.maxit = opts->max_newton;
   *status = SYM_SUCCESS;
   return s;
 }
@@ -178,7 +140,6 @@ se_step (void *state, sym_system *sys, double t, double h, const double *y,
   sym_rec *tr = s->r.trial, *cu = s->r.cur;
   const double *q0 = tr->y0, *p0 = tr->y0 + d;
   double *q1 = tr->y1, *p1 = tr->y1 + d;
-  s->sys = sys;
 
   if (s->separable)
     {
@@ -194,36 +155,12 @@ se_step (void *state, sym_system *sys, double t, double h, const double *y,
     }
   else
     {
-      double *x = s->x;
-      double sc = 0.0;
-      /* the start: an explicit Euler step when f(t, y) is known, else the
-         last step's increment; one call for f(t, y) when neither helps */
-      for (int pass = 0; pass < 2; pass++)
-        {
-          if (! tr->have_f0 && (! cont || pass == 1)
-              && (st = sym_recs_f0 (&s->r, sys)))
-            return st;
-          if (tr->have_f0)
-            for (int i = 0; i < d; i++)
-              x[i] = p0[i] + h * tr->f0[d + i];
-          else   /* cont: the last step's increment */
-            for (int i = 0; i < d; i++)
-              x[i] = p0[i] + (p0[i] - cu->y0[d + i]) * (h / cu->h);
-          sc = sym_norm_inf (d, p0);
-          for (int i = 0; i < d; i++)
-            sc = fmax (sc, fabs (x[i] - p0[i]));
-          if (sc > 0.0 || tr->have_f0)
-            break;
-        }
-      s->tk = t;
-      s->hk = h;
-      s->yk = tr->y0;
-      sym_newton_problem prob = { se_residual, se_matrix, s };
-      st = sym_kept_solve (&s->kn, &prob, sys, h, d, sc, x, s->scale, s->rv);
-      if (st)
+      sym_kick kick = { d, &s->fc, &s->kn, sys, t, h, h, tr->y0 };
+      if ((st = sym_kick_solve (&kick, &s->r, cont, cu->y0 + d, s->x,
+                                s->scale, s->rv)))
         return st;
       /* the cache holds f at [q_k; P] */
-      memcpy (p1, x, (size_t) d * sizeof (double));
+      memcpy (p1, s->x, (size_t) d * sizeof (double));
       for (int i = 0; i < d; i++)
         q1[i] = q0[i] + h * s->fc.fw[i];
     }

@@ -14,6 +14,7 @@
 
    Implicit solves: simplified Newton (newton.c), one state per equation,
      (1) G(P) = P - p_k - (h/2) f_p(t_k, q_k, P),     G' ~ I - (h/2) A_pp
+         (the kick of symplectic Euler with h/2: sym_kick_solve, steprec.c)
      (2) G(Q) = Q - q_k - (h/2) [f_q(t_k, q_k, P) + f_q(t_{k+1}, Q, P)],
                                                        G' ~ I - (h/2) A_qq
    (A_pp = d f_p/d p, A_qq = d f_q/d q, blocks of Df from sym_jac).
@@ -87,38 +88,6 @@ typedef struct {
   const double *pk;      /* (2): p_{k+1/2} */
 } sv_state;
 
-/* (1): G(P) = P - p_k - (h/2) f_p(t_k, q_k, P) */
-static int
-res_p (void *ctx, const double *x, double *r)
-{
-  sv_state *s = ctx;
-  const int d = s->d;
-  int st = sym_fcache_f (&s->fc, s->sys, s->tk, s->yk, x);
-  if (st)
-    return st;
-  const double hh = 0.5 * s->hk;
-  for (int i = 0; i < d; i++)
-    r[i] = x[i] - s->yk[d + i] - hh * s->fc.fw[d + i];
-  return SYM_SUCCESS;
-}
-
-static int
-mat_p (void *ctx, const double *x, double *a)
-{
-  sv_state *s = ctx;
-  const int d = s->d, n = s->n;
-  int st = sym_fcache_jac (&s->fc, s->sys, s->tk, s->yk, x);
-  if (st)
-    return st;
-  const double hh = 0.5 * s->hk;
-  for (int j = 0; j < d; j++)
-    for (int i = 0; i < d; i++)
-      a[i + (size_t) j * d] = (i == j ? 1.0 : 0.0)
-        - hh * s->fc.jw[(d + i) + (size_t) (d + j) * n];
-  sym_kept_built (&s->kp, s->hk);
-  return SYM_SUCCESS;
-}
-
 /* (2): G(Q) = Q - q_k - (h/2) [f_q(t_k, q_k, P) + f_q(t_{k+1}, Q, P)] */
 static int
 res_q (void *ctx, const double *x, double *r)
@@ -182,8 +151,8 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d)
                + 4 * (size_t) d;
   s->block = sym_calloc (len, sizeof (double));
-  if (! s->block || sym_newton_init (&s->kp.nw, d)
-      || sym_newton_init (&s->kq.nw, d))
+  if (! s->block || sym_kept_init (&s->kp, d, opts)
+      || sym_kept_init (&s->kq, d, opts))
     {
       sv_free (s);
       *status = SYM_ENOMEM;
@@ -198,14 +167,6 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   s->scale = w; w += d;
   s->rv = w; w += d;
   s->fqa = w;
-  for (int k = 0; k < 2; k++)
-    {
-      sym_newton *nw = k ? &s->kq.nw : &s->kp.nw;
-      if (opts && opts->newton_tol > 0)
-        nw->tol = opts->newton_tol;
-      if (opts && opts->max_newton > 0)
-        nw->maxit = opts->max_newton;
-    }
   *status = SYM_SUCCESS;
   return s;
 }
@@ -268,30 +229,11 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
   else
     {
       double *x = s->x;
-      double sc = 0.0;
       /* (1), started by an explicit half kick when f(t, y) is known, else
-         by the last step's first half kick; one call for f(t, y) when
-         neither helps */
-      for (int pass = 0; pass < 2; pass++)
-        {
-          if (! tr->have_f0 && (! cont || pass == 1)
-              && (st = sym_recs_f0 (&s->r, sys)))
-            return st;
-          if (tr->have_f0)
-            for (int i = 0; i < d; i++)
-              x[i] = p0[i] + hh * tr->f0[d + i];
-          else   /* cont: the last step's first half kick, rescaled */
-            for (int i = 0; i < d; i++)
-              x[i] = p0[i] + (p0[i] - PH (cu)[i]) * (h / cu->h);
-          sc = sym_norm_inf (d, p0);
-          for (int i = 0; i < d; i++)
-            sc = fmax (sc, fabs (x[i] - p0[i]));
-          if (sc > 0.0 || tr->have_f0)
-            break;
-        }
-      sym_newton_problem pp = { res_p, mat_p, s };
-      st = sym_kept_solve (&s->kp, &pp, sys, h, d, sc, x, s->scale, s->rv);
-      if (st)
+         by the last step's first half kick */
+      sym_kick kick = { d, &s->fc, &s->kp, sys, t, h, hh, tr->y0 };
+      if ((st = sym_kick_solve (&kick, &s->r, cont, PH (cu), x, s->scale,
+                                s->rv)))
         return st;
       memcpy (ph, x, (size_t) d * sizeof (double));
       memcpy (s->fqa, s->fc.fw, (size_t) d * sizeof (double));
@@ -299,7 +241,7 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       s->pk = ph;
       for (int i = 0; i < d; i++)
         x[i] = q0[i] + h * s->fqa[i];
-      sc = sym_norm_inf (d, q0);
+      double sc = sym_norm_inf (d, q0);
       for (int i = 0; i < d; i++)
         sc = fmax (sc, fabs (x[i] - q0[i]));
       sym_newton_problem pq = { res_q, mat_q, s };

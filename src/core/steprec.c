@@ -278,3 +278,76 @@ sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
     }
   return SYM_SUCCESS;   /* three solves claimed convergence: take it */
 }
+
+int
+sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts)
+{
+  if (sym_newton_init (&k->nw, d))
+    return SYM_ENOMEM;
+  if (opts && opts->newton_tol > 0)
+    k->nw.tol = opts->newton_tol;
+  if (opts && opts->max_newton > 0)
+    k->nw.maxit = opts->max_newton;
+  return SYM_SUCCESS;
+}
+
+/* ---------------------------------------------------------------- kick */
+
+static int
+kick_residual (void *ctx, const double *x, double *r)
+{
+  const sym_kick *kk = ctx;
+  const int d = kk->d;
+  int st = sym_fcache_f (kk->fc, kk->sys, kk->t, kk->yk, x);
+  if (st)
+    return st;
+  for (int i = 0; i < d; i++)
+    r[i] = x[i] - kk->yk[d + i] - kk->c * kk->fc->fw[d + i];
+  return SYM_SUCCESS;
+}
+
+static int
+kick_matrix (void *ctx, const double *x, double *a)
+{
+  const sym_kick *kk = ctx;
+  const int d = kk->d, n = 2 * d;
+  int st = sym_fcache_jac (kk->fc, kk->sys, kk->t, kk->yk, x);
+  if (st)
+    return st;
+  for (int j = 0; j < d; j++)
+    for (int i = 0; i < d; i++)
+      a[i + (size_t) j * d] = (i == j ? 1.0 : 0.0)
+        - kk->c * kk->fc->jw[(d + i) + (size_t) (d + j) * n];
+  sym_kept_built (kk->k, kk->h);
+  return SYM_SUCCESS;
+}
+
+int
+sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
+                const double *prev, double *x, double *scale, double *rv)
+{
+  const int d = kk->d;
+  const sym_rec *tr = r->trial, *cu = r->cur;
+  const double *p0 = tr->y0 + d;
+  double sc = 0.0;
+  int st;
+  for (int pass = 0; pass < 2; pass++)
+    {
+      if (! tr->have_f0 && (! cont || pass == 1)
+          && (st = sym_recs_f0 (r, kk->sys)))
+        return st;
+      if (tr->have_f0)
+        for (int i = 0; i < d; i++)
+          x[i] = p0[i] + kk->c * tr->f0[d + i];
+      else   /* cont: the last step's matching increment, rescaled */
+        for (int i = 0; i < d; i++)
+          x[i] = p0[i] + (p0[i] - prev[i]) * (kk->h / cu->h);
+      sc = sym_norm_inf (d, p0);
+      for (int i = 0; i < d; i++)
+        sc = fmax (sc, fabs (x[i] - p0[i]));
+      if (sc > 0.0 || tr->have_f0)
+        break;
+    }
+  sym_newton_problem prob = { kick_residual, kick_matrix, (void *) kk };
+  return sym_kept_solve (kk->k, &prob, kk->sys, kk->h, d, sc, x, scale, rv);
+}

@@ -89,6 +89,33 @@ int sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
                     sym_system *sys, double h, int d, double sc, double *x,
                     double *scale, double *rv);
 
+/* sym_newton_init for d unknowns with the tolerance and iteration limit
+   of opts (if set) */
+int sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts);
+
+/* The implicit kick P = p_k + c f_p(t_k, q_k, P) of symplectic Euler
+   (c = h) and of Stormer-Verlet's first half kick (c = h/2):
+     G(P) = P - p_k - c f_p(t_k, q_k, P),   G'(P) ~ I - c A_pp,
+   A_pp = d f_p / d p; f at [q_k; P] stays in the cache fc. */
+typedef struct {
+  int d;
+  sym_fcache *fc;
+  sym_kept *k;            /* the Newton state kept for this kick */
+  sym_system *sys;
+  double t, h, c;         /* t_k, the step, the kick's coefficient */
+  const double *yk;       /* [q_k; p_k] */
+} sym_kick;
+
+/* Solve the kick of the trial step of r into x (d), with scale, rv: d of
+   work.  Start: P0 = p_k + c f_p(t_k, y_k) when f(t_k, y_k) is known, else
+   p_k + (p_k - prev) h / h_prev from the last accepted step when it ends
+   where this one starts (cont; prev: its p at the point matching P), else
+   f(t_k, y_k) is evaluated (one call).  Newton's scale is
+   max(|p_k|, |P0 - p_k|) (1 if both vanish). */
+int sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
+                    const double *prev, double *x, double *scale,
+                    double *rv);
+
 int sym_same_vec (int n, const double *a, const double *b);
 /* the end of the last step (of size h) and the start of this one: the
    driver may form them as t + h and t0 + k h, a few ulps apart */
