@@ -75,18 +75,10 @@ se_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   int dummy;
   if (! status)
     status = &dummy;
-  if (! sys || sys->dim < 1 || ! sys->rhs)
-    {
-      *status = SYM_EBADINPUT;
-      return NULL;
-    }
-  const int d = sys->dim, n = 2 * d;
-  se_state *s = sym_calloc (1, sizeof (*s));
+  se_state *s = sym_onestep_new (sys, sizeof (se_state), status);
   if (! s)
-    {
-      *status = SYM_ENOMEM;
-      return NULL;
-    }
+    return NULL;
+  const int d = sys->dim, n = 2 * d;
   s->d = d;
   s->n = n;
   if (opts)

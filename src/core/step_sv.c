@@ -128,18 +128,10 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   int dummy;
   if (! status)
     status = &dummy;
-  if (! sys || sys->dim < 1 || ! sys->rhs)
-    {
-      *status = SYM_EBADINPUT;
-      return NULL;
-    }
-  const int d = sys->dim, n = 2 * d;
-  sv_state *s = sym_calloc (1, sizeof (*s));
+  sv_state *s = sym_onestep_new (sys, sizeof (sv_state), status);
   if (! s)
-    {
-      *status = SYM_ENOMEM;
-      return NULL;
-    }
+    return NULL;
+  const int d = sys->dim, n = 2 * d;
   s->d = d;
   s->n = n;
   if (opts)

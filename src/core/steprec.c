@@ -32,6 +32,20 @@ sym_norm_inf (int n, const double *v)
   return m;
 }
 
+void *
+sym_onestep_new (const sym_system *sys, size_t size, int *status)
+{
+  if (! sys || sys->dim < 1 || ! sys->rhs)
+    {
+      *status = SYM_EBADINPUT;
+      return NULL;
+    }
+  void *s = sym_calloc (1, size);
+  if (! s)
+    *status = SYM_ENOMEM;
+  return s;
+}
+
 /* ---------------------------------------------------------------- records */
 
 size_t

@@ -29,6 +29,10 @@ typedef struct {
   int trial_ok;           /* the last step succeeded: accept may take it */
 } sym_recs;
 
+/* The start of the SE and SV allocs: a zeroed state of size bytes, or
+   NULL with *status SYM_EBADINPUT (no system) or SYM_ENOMEM. */
+void *sym_onestep_new (const sym_system *sys, size_t size, int *status);
+
 /* doubles the records need; place them in w */
 size_t sym_recs_len (int n, int naux);
 void sym_recs_place (sym_recs *r, int n, int naux, double *w);
