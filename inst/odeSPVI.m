@@ -85,7 +85,8 @@
 ## of: the @code{Jacobian} option (matrix or handle returning df/dy);
 ## @code{HamiltonianHessFcn} (handle returning Hess(H)); the second output
 ## of @var{fcn}; finite differences of @var{fcn}.  The matrix is kept and
-## reused while Newton converges fast.  @code{stats.jacobian_source} tells
+## reused while Newton converges fast, or new on every step (see
+## NewtonMatrix).  @code{stats.jacobian_source} tells
 ## which source was used.  With the second output of @var{fcn}, one call
 ## with two outputs gives both the Hessian and f at a node, and the
 ## residual there uses that f: @code{stats.npds} counts these calls and
@@ -96,13 +97,32 @@
 ## matrix of states and returns 2d-by-k; all quadrature nodes of a Newton
 ## iteration are then evaluated in one call, and a finite-difference
 ## matrix (no Jacobian or Hessian source) takes one call for all nodes
-## and their 2d perturbed states each.  The Hessian (from any source) is
-## asked for one node at a time.  For long runs this is the fastest
-## form: Kepler (e = 0.6) over 1000 periods with Nodes = 8, Q_DoFs = 9
-## and TimeStepSize = 2*pi/30 keeps the energy error at 3e-12 in 1/32 to
-## 1/50 of the time @code{ode45} needs at RelTol = AbsTol = 1e-10, whose
+## and their 2d perturbed states each; such a matrix is then new on every
+## step (NewtonMatrix @qcode{"auto"}), so that a step often needs one call
+## in all: 1.57 calls per step on Kepler with the default pair and
+## TimeStepSize = 2*pi/100.  The Hessian (from any source) is asked for
+## one node at a time.  For long runs this is the fastest form: Kepler
+## (e = 0.6) over 1000 periods with Nodes = 8, Q_DoFs = 9 and
+## TimeStepSize = 2*pi/30 keeps the energy error at 3e-12 in about 1/50
+## of the time @code{ode45} needs at RelTol = AbsTol = 1e-10, whose
 ## energy error grows linearly (8.5e-9 after 100 periods;
 ## @file{bench/run_benchmarks.m}, P5).
+## @item NewtonMatrix
+## @qcode{"kept"}: Newton's matrix (from the node Jacobians) and its LU
+## are kept across steps while Newton converges fast; between
+## evaluations the node Jacobians are extrapolated in time.  Two
+## corrections per step are typical (2.37 on Kepler, (4,3), h = 2*pi/100:
+## 7.11 calls of @var{fcn} and 0.58 Hessian calls per step).
+## @qcode{"new"}: a new matrix at every step's predicted start, whose
+## first correction is then exact Newton; the step stops after it when
+## its quadratic error, estimated from earlier steps, is far below
+## NewtonTol (1.57 corrections per step on Kepler: with the Hessian as
+## second output of @var{fcn}, 3 calls with two outputs and 1.71 with one
+## per step).  Fewer calls, but Hessians on every step: faster when the
+## Hessian is cheap beside f.  Default @qcode{"auto"}: @qcode{"new"} with
+## Vectorized finite-difference matrices of at most 64 unknowns
+## ((Q_DoFs-1+Nodes)*d), else @qcode{"kept"}.  Both converge every step to
+## round-off (within 3e-16 of a tightly converged step on Kepler).
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).
 ## @item Events, OutputFcn, OutputSel, Refine, Stats

@@ -50,6 +50,16 @@
 ## @item MaxNewtonIterations
 ## Newton iterations per solve before the matrix is refreshed or the step
 ## is retried.  Default 10.
+## @item NewtonMatrix
+## @code{odeSPVI}: @qcode{"kept"} keeps Newton's matrix (and its LU) across
+## steps while Newton converges fast, evaluating the Hessian or Jacobian
+## seldom; @qcode{"new"} evaluates it at the start of every step, so that
+## the first Newton correction is exact and often the only one (fewer
+## calls of @var{fcn}, but Hessians on every step).  Default
+## @qcode{"auto"}: @qcode{"new"} when @code{Vectorized} is on and the
+## matrix comes from finite differences (the nodes and their perturbed
+## states then take one call) and (Q_DoFs-1+Nodes)*d <= 64, else
+## @qcode{"kept"}.
 ## @item MaxSteps
 ## Largest number of steps of a run.  Default: no limit.
 ## @end table
@@ -72,7 +82,7 @@ function opts = symplecticset (varargin)
   persistent fields = {"TimeStepSize", "TimeStepNumber", "Q_DoFs", ...
                        "Nodes", "P_DoFs", "PolynomialDegree", ...
                        "HamiltonianHessFcn", "Separable", "NewtonTol", ...
-                       "MaxNewtonIterations", "MaxSteps"};
+                       "MaxNewtonIterations", "NewtonMatrix", "MaxSteps"};
 
   if (nargin == 0 && nargout == 0)
     odeset ();
@@ -86,6 +96,7 @@ function opts = symplecticset (varargin)
     printf ("          Separable:  {[\"off\"], \"on\"}\n");
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");
+    printf ("       NewtonMatrix:  {[\"auto\"], \"kept\", \"new\"}\n");
     printf ("           MaxSteps:  integer, >0, [] (no limit)\n");
     return;
   endif
@@ -156,9 +167,10 @@ endfunction
 %!test
 %! ## no warning for the package's names
 %! lastwarn ("");
-%! opts = symplecticset ("Nodes", 3, "Separable", "on");
+%! opts = symplecticset ("Nodes", 3, "Separable", "on", "newtonmatrix", "new");
 %! assert (lastwarn (), "");
 %! assert (opts.Separable, "on");
+%! assert (opts.NewtonMatrix, "new");
 
 %!test
 %! ## merging with an old struct keeps its values

@@ -167,6 +167,17 @@ typedef struct {
   double eta;       /* theta/(1-theta) carried from the last solve */
   double theta;     /* last contraction rate */
   int iters;        /* iterations of the last solve */
+  /* Exact first corrections (set quad when every solve starts with a new
+     matrix at its start x, so that the first correction is Newton's own):
+     the error left after it is about kq |dx_1|^2, kq measured as
+     |dx_2| / |dx_1|^2 on solves where |dx_2| is well above round-off; a
+     solve then stops after one correction when 100 kq |dx_1|^2 <= tol, at
+     most 16 times in a row before a second correction measures again
+     (see newton.c).  one: the last solve stopped so.  kq_ok = 0 forgets
+     kq (a new h, a new problem). */
+  int quad;
+  double kq;
+  int kq_ok, kq_age, one;
   double *r, *dx, *x0;   /* work */
 } sym_newton;
 
@@ -186,9 +197,17 @@ typedef struct {
   double newton_tol;   /* 0: default */
   int max_newton;      /* 0: default */
   int separable;       /* SE/SV: explicit steps for H = T(p) + V(q) */
+  int newton_matrix;   /* SPVI: SYM_MATRIX_AUTO (0), _KEPT or _NEW */
   int want_error;      /* the driver will ask for error estimates */
   int want_dense;      /* the driver will call dense() */
 } sym_method_opts;
+
+/* SPVI's Newton matrix: kept across steps while Newton converges fast,
+   or new at the start of every step (its first correction exact Newton,
+   often enough); auto: new when the nodes' Jacobians come in the same
+   batch call as their f (finite differences with rhs_batch) and the
+   matrix is small, else kept (see step_spvi.c). */
+enum { SYM_MATRIX_AUTO = 0, SYM_MATRIX_KEPT = 1, SYM_MATRIX_NEW = 2 };
 
 /* A stepper type: a const table, its functions static in the method's file.
    Life cycle: alloc; then for each attempt step (trial state), and accept

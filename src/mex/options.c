@@ -310,6 +310,25 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                            "degenerate pair: the scheme does not converge "
                            "unless Q_DoFs <= 2*Nodes", solver, o->q_dofs,
                            o->nodes);
+      /* Newton's matrix: kept across steps, or new on every step */
+      o->newton_matrix = SYM_MATRIX_AUTO;
+      const mxArray *vm = field (opts, "NewtonMatrix");
+      if (vm)
+        {
+          char buf[8] = "";
+          if (! mxIsChar (vm) || mxGetString (vm, buf, sizeof buf) != 0
+              || ! (name_eq (buf, "auto") || name_eq (buf, "kept")
+                    || name_eq (buf, "new")))
+            {
+              char what[64];
+              mexErrMsgIdAndTxt (BADARG, "%s: NewtonMatrix must be \"auto\", "
+                                 "\"kept\" or \"new\", got %s", solver,
+                                 describe (vm, what, sizeof what));
+            }
+          o->newton_matrix = name_eq (buf, "kept") ? SYM_MATRIX_KEPT
+                             : name_eq (buf, "new") ? SYM_MATRIX_NEW
+                             : SYM_MATRIX_AUTO;
+        }
     }
 }
 

@@ -823,6 +823,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   mo.nodes = o.nodes;
   mo.newton_tol = o.newton_tol;
   mo.max_newton = o.max_newton;
+  mo.newton_matrix = o.newton_matrix;
   mo.separable = o.separable;
 
   sym_driver_opts dopt;

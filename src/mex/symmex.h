@@ -42,6 +42,7 @@ typedef struct {
   int separable;
   double newton_tol;
   int max_newton;
+  int newton_matrix;          /* odeSPVI: SYM_MATRIX_AUTO, _KEPT, _NEW */
   long max_steps;
 } symmex_opts;
 
