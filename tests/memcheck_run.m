@@ -102,6 +102,12 @@ function status = memcheck_run ()
   endfor
   [t, y] = odeSPVI (kep, [0 1], y0k, struct ("PolynomialDegree", 6, "TimeStepSize", 0.1));
   nbad += check (numel (t) == 11, "odeSPVI", "PolynomialDegree");
+  ## a new Newton matrix on every step, fixed and adaptive
+  for ts = {0.1, []}
+    [t, y] = odeSPVI (kep, [0 1], y0k, struct ("NewtonMatrix", "new", "TimeStepSize", ts{1}));
+    nbad += check (all (isfinite (y(:))), "odeSPVI", "NewtonMatrix new");
+  endfor
+  nbad += expect_error (@odeSPVI, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("NewtonMatrix", "x"));
 
   printf ("memcheck_run: %d unexpected results\n", nbad);
   status = double (nbad > 0);

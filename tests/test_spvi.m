@@ -164,6 +164,13 @@
 %! s5 = odeSPVI (@kepler, [0 4*pi], y0, symplecticset (o, "NewtonMatrix", "KEPT"));
 %! assert (s5.y, s2.y);
 %! assert (s5.stats.nfevals, s2.stats.nfevals);
+%! ## adaptive: both reach the tolerance (exact solution: the orbit
+%! ## closes after each period)
+%! oa = odeset ("RelTol", 1e-8, "AbsTol", 1e-10);
+%! [~, ya] = odeSPVI (@kepler, [0 4*pi], y0, oa);
+%! [~, yn] = odeSPVI (@kepler, [0 4*pi], y0, symplecticset (oa, "NewtonMatrix", "new"));
+%! assert (ya(end, :).', y0, 1e-7);
+%! assert (yn(end, :).', y0, 1e-7);
 
 %!test
 %! ## sol reports the pair and its order

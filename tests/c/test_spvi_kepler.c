@@ -100,6 +100,21 @@ long_run (sym_system *sys, int newmat, const char *label, double *cost)
   sym_step_spvi->free (s);
 }
 
+/* The stepper (n, m) with the Newton matrix newmat on sc, and the same
+   pair on sr with Newton's tolerance 1e-18, for tightly converged steps */
+static void
+tight_pair (int n, int m, int newmat, sym_system *sc, sym_system *sr,
+            void **cs, void **rs)
+{
+  sym_method_opts o = ts_opts (n, m), orf = o;
+  o.newton_matrix = newmat;
+  orf.newton_tol = 1e-18;
+  orf.max_newton = 30;
+  int st;
+  *cs = sym_step_spvi->alloc (sc, &o, &st);
+  *rs = sym_step_spvi->alloc (sr, &orf, &st);
+}
+
 /* Over 10 periods every step against the same step solved from a reset
    stepper (Euler start, fresh matrix) with Newton's tolerance 1e-18; the
    largest relative difference */
@@ -107,13 +122,8 @@ static double
 converged (sym_system *sc, int newmat, sym_system *sr)
 {
   const double h = 2 * TS_PI / 100;
-  sym_method_opts o = ts_opts (4, 3), orf = o;
-  o.newton_matrix = newmat;
-  orf.newton_tol = 1e-18;
-  orf.max_newton = 30;
-  int st;
-  void *cs = sym_step_spvi->alloc (sc, &o, &st);
-  void *rs = sym_step_spvi->alloc (sr, &orf, &st);
+  void *cs, *rs;
+  tight_pair (4, 3, newmat, sc, sr, &cs, &rs);
   double yc[4], ycn[4], yr[4];
   ts_kep_y0 (0.6, yc);
   double worst = 0.0, rms = 0.0;
@@ -162,13 +172,9 @@ energy_bias (sym_system *sc, int newmat, double *itps)
   const double h = 0.3;
   const long ns = 20000;
   sym_system sr = ts_system (1, ts_pend, ts_pend_jac, NULL);
-  sym_method_opts o = ts_opts (9, 8), orf = o;
-  o.newton_matrix = newmat;
-  orf.newton_tol = 1e-18;
-  orf.max_newton = 30;
-  int st;
-  void *cs = sym_step_spvi->alloc (sc, &o, &st);
-  void *rs = sym_step_spvi->alloc (&sr, &orf, &st);
+  void *cs, *rs;
+  tight_pair (9, 8, newmat, sc, &sr, &cs, &rs);
+  int st = 0;
   double y[2] = { 2.5, 0.3 }, yn[2], yr[2], sum = 0.0;
   for (long k = 0; k < ns && ! st; k++)
     {
