@@ -122,7 +122,9 @@
 ## Hessian is cheap beside f.  Default @qcode{"auto"}: @qcode{"new"} with
 ## Vectorized finite-difference matrices of at most 64 unknowns
 ## ((Q_DoFs-1+Nodes)*d), else @qcode{"kept"}.  Both converge every step to
-## round-off (within 3e-16 of a tightly converged step on Kepler).
+## round-off (within 3e-16 of a tightly converged step on Kepler).  Only
+## the pairs Q_DoFs = Nodes+1 (the default) use it; the others always
+## keep their matrix.
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).
 ## @item Events, OutputFcn, OutputSel, Refine, Stats

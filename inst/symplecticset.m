@@ -59,7 +59,7 @@
 ## @qcode{"auto"}: @qcode{"new"} when @code{Vectorized} is on and the
 ## matrix comes from finite differences (the nodes and their perturbed
 ## states then take one call) and (Q_DoFs-1+Nodes)*d <= 64, else
-## @qcode{"kept"}.
+## @qcode{"kept"}.  Pairs other than Q_DoFs = Nodes+1 keep their matrix.
 ## @item MaxSteps
 ## Largest number of steps of a run.  Default: no limit.
 ## @end table
