@@ -37,6 +37,15 @@ sym_error_norm (int n, const double *e, const double *yold,
   return m;
 }
 
+double
+sym_error_floor (int n, const double *y, double rtol, double atol)
+{
+  double w = INFINITY;
+  for (int i = 0; i < n; i++)
+    w = fmin (w, fmax (atol, rtol * fabs (y[i])));
+  return w;
+}
+
 /* The factor by which to multiply h after a step with error norm err, for
    an estimate of order q+1 (err = O(h^(q+1))). */
 double

@@ -267,6 +267,10 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
 
   sym_method_opts mo = *mopts;
   mo.want_error = ! fixed;
+  mo.est_rtol = fixed ? 0.0 : o->rtol;
+  mo.est_atol = 0.0;
+  for (int i = 0; ! fixed && i < o->atol_len; i++)
+    mo.est_atol = i ? fmin (mo.est_atol, o->atol[i]) : o->atol[0];
   mo.want_dense = mopts->want_dense || o->ntout > 2 || o->refine > 1
                   || o->nevents > 0;
   int st = SYM_SUCCESS;

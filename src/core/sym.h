@@ -199,6 +199,11 @@ typedef struct {
   int separable;       /* SE/SV: explicit steps for H = T(p) + V(q) */
   int newton_matrix;   /* SPVI: SYM_MATRIX_AUTO (0), _KEPT or _NEW */
   int want_error;      /* the driver will ask for error estimates */
+  /* the tolerances of the adaptive error control (the driver sets them
+     with want_error; est_atol the smallest AbsTol): a stepper may stop
+     the nonlinear solves that only feed the estimate well below them.
+     0: none, converge to round-off */
+  double est_rtol, est_atol;
   int want_dense;      /* the driver will call dense() */
 } sym_method_opts;
 

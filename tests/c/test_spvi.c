@@ -610,6 +610,128 @@ test_error_estimate (void)
     }
 }
 
+/* ---------------------------------------------- adaptive solve tolerances */
+/* The same steps with the adaptive tolerances in the options (the
+   method's solve stopping at 1e-3 of the smallest error they allow, the
+   companion's at 1e-4) and without (both converged to round-off): the
+   advanced values and the estimates agree to those fractions, for fewer
+   calls.  States along a Kepler orbit (e = 0.6), h = 0.05, RelTol =
+   AbsTol = 1e-6; each step from a reset stepper (Euler start, new
+   matrices), and each step after the one before (polynomial start, kept
+   matrices). */
+static void
+test_adaptive_tolerances (void)
+{
+  const double rtol = 1e-6, atol = 1e-6, h = 0.05;
+  sym_system sl = ts_system (2, ts_kep, ts_kep_jac, NULL);
+  sym_system st_ = ts_system (2, ts_kep, ts_kep_jac, NULL);
+  sym_method_opts ol = ts_opts (4, 3), ot = ol;
+  ol.want_error = ot.want_error = 1;
+  ol.est_rtol = rtol;
+  ol.est_atol = atol;
+  int st;
+  void *sa = T->alloc (&sl, &ol, &st), *sb = T->alloc (&st_, &ot, &st);
+  double y[4], ya[4], yb[4], ea[4], eb[4];
+  double worst_y = 0.0, worst_e = 0.0;
+  int bad = 0;
+  for (int pass = 0; pass < 2; pass++)
+    {
+      ts_kep_y0 (0.6, y);
+      T->reset (sa);
+      T->reset (sb);
+      double t = 0.0;
+      for (int k = 0; k < 200 && ! bad; k++)
+        {
+          if (pass == 0)
+            {
+              T->reset (sa);
+              T->reset (sb);
+            }
+          int s1 = T->step (sa, &sl, t, h, y, ya, ea);
+          int s2 = T->step (sb, &st_, t, h, y, yb, eb);
+          if (s1 || s2)
+            {
+              bad = 1;
+              CHECK (0, "pass %d step %d: status %d %d", pass, k, s1, s2);
+              break;
+            }
+          T->accept (sa);
+          T->accept (sb);
+          double w = INFINITY;
+          for (int i = 0; i < 4; i++)
+            w = fmin (w, fmax (atol, rtol * fabs (y[i])));
+          worst_y = fmax (worst_y, ts_maxdiff (4, ya, yb) / w);
+          worst_e = fmax (worst_e, ts_maxdiff (4, ea, eb) / w);
+          memcpy (y, yb, sizeof y);
+          t += h;
+        }
+    }
+  long ca = sl.cnt.nrhs + sl.cnt.njac, cb = st_.cnt.nrhs + st_.cnt.njac;
+  printf ("adaptive tolerances, Kepler (4,3), h = 0.05, 400 steps: values "
+          "differ by %.2g, estimates by %.2g of the error floor; %ld "
+          "against %ld rhs + jac calls converged to round-off\n", worst_y,
+          worst_e, ca, cb);
+  /* bounds twice the stopping tests (their estimates of the error left,
+     not bounds; the companion starts from the method's solution) */
+  CHECK (worst_y <= 2 * 1e-4, "advanced values differ by %.3g of the floor",
+         worst_y);
+  CHECK (worst_e <= 2 * (1e-3 + 1e-4), "estimates differ by %.3g of the "
+         "floor", worst_e);
+  CHECK (ca < 0.95 * cb, "calls %ld, converged to round-off %ld", ca, cb);
+  T->free (sa);
+  T->free (sb);
+}
+
+/* Adaptive Kepler, e = 0.6, 10 periods, RelTol = AbsTol = 1e-4..1e-12:
+   the end-point error against the exact solution (the start) follows the
+   tolerance down to 1e-12: each 100-fold tighter tolerance gives an
+   error at least 30 times smaller. */
+static double kep_end[4];
+
+static int
+kep_out (double t, const double *y, void *user)
+{
+  (void) t;
+  (void) user;
+  memcpy (kep_end, y, sizeof kep_end);
+  return 0;
+}
+
+static void
+test_adaptive_kepler (void)
+{
+  double err[5];
+  long calls[5];
+  for (int k = 0; k < 5; k++)
+    {
+      double tol = pow (10.0, -4 - 2 * k);
+      sym_system sys = ts_system (2, ts_kep, ts_kep_jac, NULL);
+      sym_method_opts mo = ts_opts (4, 3);
+      sym_driver_opts o;
+      memset (&o, 0, sizeof o);
+      double y0[4], tr;
+      ts_kep_y0 (0.6, y0);
+      o.t0 = 0.0;
+      o.tf = 10 * 2 * TS_PI;
+      o.rtol = tol;
+      o.atol = &tol;
+      o.atol_len = 1;
+      o.refine = 1;
+      o.output = kep_out;
+      int st = sym_integrate (T, &sys, &mo, &o, y0, &tr);
+      CHECK (st == SYM_DONE, "RelTol %g: status %d", tol, st);
+      err[k] = ts_maxdiff (4, kep_end, y0);
+      calls[k] = sys.cnt.nrhs + sys.cnt.njac;
+    }
+  printf ("adaptive Kepler (4,3), 10 periods, RelTol 1e-4..1e-12: end-point "
+          "errors %.2e %.2e %.2e %.2e %.2e, rhs + jac calls %ld %ld %ld %ld "
+          "%ld\n", err[0], err[1], err[2], err[3], err[4], calls[0],
+          calls[1], calls[2], calls[3], calls[4]);
+  for (int k = 1; k < 5; k++)
+    CHECK (err[k] * 30 <= err[k - 1], "RelTol 1e-%d: error %.3g, at 1e-%d "
+           "%.3g", 4 + 2 * k, err[k], 2 + 2 * k, err[k - 1]);
+}
+
 /* ----------------------------------------------------------- dense output */
 static void
 test_dense (void)
@@ -901,6 +1023,8 @@ main (void)
   test_jacobian_sources ();
   test_rhs_jac ();
   test_error_estimate ();
+  test_adaptive_tolerances ();
+  test_adaptive_kepler ();
   test_dense ();
   test_symmetric_and_predictor ();
   test_failures ();
