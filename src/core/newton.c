@@ -164,6 +164,15 @@ new_matrix (sym_newton *nw, const sym_newton_problem *p, const double *x,
   return st;
 }
 
+/* The status of a solve whose matrix failed: the callback's own (fatal,
+   a smaller step asked for, NaN or Inf: the run's message then names the
+   function and t), SYM_NEWTON_FAIL for a singular matrix. */
+static int
+matrix_failure (int st)
+{
+  return st == SYM_SINGULAR ? SYM_NEWTON_FAIL : st;
+}
+
 int
 sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
                   const double *scale, sym_counters *c)
@@ -187,7 +196,7 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
     {
       st = new_matrix (nw, p, x, c);
       if (st)
-        return st < 0 ? st : SYM_NEWTON_FAIL;
+        return matrix_failure (st);
     }
 
   for (;;)
@@ -282,7 +291,7 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
         memcpy (x, nw->x0, (size_t) n * sizeof (double));
       st = new_matrix (nw, p, x, c);
       if (st)
-        return st < 0 ? st : SYM_NEWTON_FAIL;
+        return matrix_failure (st);
       eta = 1.0;
     }
 }

@@ -168,7 +168,6 @@ typedef struct {
   double *Ae[2];
   double te[2], he[2];
   int nae;             /* how many of them are valid */
-  int cb_fail;         /* status of a failed callback in the matrix */
   /* the step being solved, for the callbacks */
   sym_system *sys;
   double t, h;
@@ -472,11 +471,11 @@ core_matrix (void *ctx, const double *x, double *M)
           for (int j = 0; j < m; j++)
             if ((st = sym_rhs_jac (c->sys, c->tj[j], c->Y + j * nn,
                                    c->F + j * nn, c->A + j * nn * nn)))
-              return c->cb_fail = st;
+              return st;
         }
       else if ((st = sym_rhs_jac_many (c->sys, m, c->tj, c->Y, c->F,
                                        c->A)))
-        return c->cb_fail = st;
+        return st;
       memcpy (c->xf, x, nb);
       c->fvalid = 1;
     }
@@ -485,7 +484,7 @@ core_matrix (void *ctx, const double *x, double *M)
       /* the Jacobian callback, or finite differences from the F at x */
       core_states (c, x);
       if ((st = sym_jac_many (c->sys, m, c->tj, c->Y, c->F, c->A)))
-        return c->cb_fail = st;
+        return st;
     }
   /* keep them for the extrapolation (core_extrapolate): a new step's
      evaluation becomes the latest, a second one on the same step (a
@@ -861,15 +860,11 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
   c->nw.maxit = s->maxit;
   sym_newton_problem prob = { core_residual, core_matrix, c };
   memcpy (c->x0, c->x, (size_t) N * sizeof (double));
-  c->cb_fail = 0;
   st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &sys->cnt);
   if (every && c->nw.kq_ok && c->nw.kq != kq_before)
     c->h_kq = h;
-  /* sym_newton reports a recoverable failure of the matrix callback as
-     SYM_NEWTON_FAIL: pass the callback's own status on instead (and do
-     not retry: it asked for a smaller step) */
-  if (st == SYM_NEWTON_FAIL && c->cb_fail > 0)
-    st = c->cb_fail;
+  /* a failed callback of the matrix comes back with its own status
+     (newton.c): no retry, it asks for a smaller step */
   if (st == SYM_NEWTON_FAIL)
     {
       memcpy (c->x, c->x0, (size_t) N * sizeof (double));

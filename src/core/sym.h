@@ -148,7 +148,9 @@ int sym_lu_solve (sym_lu *lu, double *b, sym_counters *c); /* b <- A \ b */
    theta/(1-theta)*|dx| <= tol (|.| the max norm of dx./scale), or when |dx|
    itself is at round-off level.  A slow or diverging iteration with a stale
    matrix asks for a fresh one (from x) and goes on; with a fresh one it
-   fails with SYM_NEWTON_FAIL. */
+   fails with SYM_NEWTON_FAIL (also for a singular matrix).  A failed
+   callback, of the residual or of the matrix, ends the solve with its own
+   status. */
 typedef struct {
   /* r = G(x) */
   int (*residual) (void *ctx, const double *x, double *r);
