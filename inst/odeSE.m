@@ -67,7 +67,12 @@
 ## the trapezoidal rule built from @var{fcn} at both ends of the step,
 ## y(k+1) - y(k) - h/2 (f(k) + f(k+1)), of size O(h^2) like the method's
 ## local error; it costs one evaluation of @var{fcn} per step (shared with
-## the next step).
+## the next step).  After an accepted step the next step is the smaller
+## of the classical choice, 0.9 (1/err)^(1/(p+1)) times the last, and the
+## one that follows the change of the error over the last two accepted
+## steps (predictive control), so that where the error grows along the
+## solution steps do not alternate between failed and accepted (the same
+## in all three solvers).
 ## @item Separable
 ## @qcode{"on"} for H = T(p) + V(q) with no forcing that depends on p: the
 ## step is explicit, two evaluations of @var{fcn} per step and no Newton.

@@ -11,6 +11,11 @@ double sym_error_norm (int n, const double *e, const double *yold,
    min_i max(atol, rtol |y_i|). */
 double sym_error_floor (int n, const double *y, double rtol, double atol);
 double sym_step_factor (double err, int q, double facmin, double facmax);
+/* After an accepted step (h, err) that followed an accepted one (h_acc,
+   err_acc): the smaller of fac and the factor that predicts the error's
+   trend (see control.c); err_acc <= 0: fac. */
+double sym_step_factor_pred (double fac, double err, int q, double h,
+                             double h_acc, double err_acc, double facmin);
 /* work: 2n doubles */
 int sym_initial_step (sym_system *sys, double t0, const double *y0,
                       const double *f0, double dir, int q, double rtol,

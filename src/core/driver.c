@@ -377,6 +377,8 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
 
   long k = 0;                /* fixed: steps taken */
   int last_rejected = 0;
+  double h_acc = 0, err_acc = 0;   /* the last accepted step (predictive
+                                      control, control.c) */
   for (;;)
     {
       double hs, tnew;
@@ -488,6 +490,9 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
       if (! fixed)
         {
           double fac = sym_step_factor (err, q, 0.2, last_rejected ? 1.0 : 5.0);
+          fac = sym_step_factor_pred (fac, err, q, hs, h_acc, err_acc, 0.2);
+          h_acc = fabs (hs);
+          err_acc = fmax (err, 1e-2);
           h = fmin (h * fac, hmax);
           last_rejected = 0;
         }

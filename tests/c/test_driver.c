@@ -7,6 +7,7 @@
    - "midpoint": the explicit midpoint rule (order 2) with the Euler
      step as embedded estimate (err = O(h^2)), cubic Hermite dense output. */
 #include "sym.h"
+#include "control.h"
 #include "testutil.h"
 
 #include <float.h>
@@ -507,6 +508,38 @@ main (void)
   o.rtol = 0;
   CHECK (sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr)
          == SYM_EBADINPUT, "rtol 0 refused");
+
+  /* predictive step-size control (control.c).  A model error that grows
+     along the run by g per step at a fixed h: err_n = c g^n h_n^(q+1).
+     After two accepted steps the predicted factor meets it exactly: the
+     next error is safety^(q+1) = 0.9^7 for q = 6, where the standard
+     factor alone gives g times that, a failed step for g = 4. */
+  {
+    const int q = 6;
+    const double c = 3e5, g = 4.0;
+    double h[3] = { 0.1, 0.09, 0 }, err[3];
+    for (int k = 0; k < 2; k++)
+      err[k] = c * pow (g, k) * pow (h[k], q + 1);
+    double fac = sym_step_factor (err[1], q, 0.2, 5.0);
+    double fp = sym_step_factor_pred (fac, err[1], q, h[1], h[0], err[0],
+                                      0.2);
+    h[2] = h[1] * fp;
+    err[2] = c * pow (g, 2) * pow (h[2], q + 1);
+    CHECK_CLOSE (err[2], pow (0.9, q + 1), 1e-12, "predicted step's error");
+    double err_std = c * pow (g, 2) * pow (h[1] * fac, q + 1);
+    CHECK_CLOSE (err_std, g * pow (0.9, q + 1), 1e-12,
+                 "standard factor's error");
+    /* a falling error (g < 1): the standard factor stands */
+    CHECK (sym_step_factor_pred (fac, err[1], q, h[1], h[0], 1e6 * err[1],
+                                 0.2) == fac, "falling error");
+    /* no earlier accepted step, or no finite error: the standard factor */
+    CHECK (sym_step_factor_pred (fac, err[1], q, h[1], 0.0, 0.0, 0.2) == fac
+           && sym_step_factor_pred (fac, NAN, q, h[1], h[0], err[0], 0.2)
+              == fac, "no trend");
+    /* the prediction never shrinks h below facmin */
+    CHECK (sym_step_factor_pred (fac, err[1], q, h[1], h[0], 1e-30, 0.2)
+           == 0.2, "facmin");
+  }
 
   return tu_finish ("test_driver");
 }
