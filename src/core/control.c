@@ -76,10 +76,11 @@ sym_step_factor (double err, int q, double facmin, double facmax)
    0/1405 -> 24/133 17/222 15/404 2/754 0/1433, rhs + jac calls 4765 6876
    10763 14356 24398 -> 3967 5142 8173 13506 25003, end-point errors
    1.2e-2 8.8e-5 3.2e-7 3.0e-9 8.5e-12 -> 8.7e-3 9.6e-5 3.0e-7 9.7e-10
-   2.7e-12.  On e = 0.9 and the pendulum likewise (calls -2..-36% down to
-   RelTol 1e-10, +1..2% at 1e-12, where no step failed anyway); odeSE and
-   odeSV, whose low orders see little change of the error from one step
-   to the next, within -35..+5%. */
+   2.7e-12.  On e = 0.9 and the pendulum (bench/adaptive_runs.m, against
+   the same script before this control) likewise: calls -2..-30% down to
+   RelTol 1e-10, +1..2% at 1e-12, where hardly a step failed anyway;
+   odeSE and odeSV, whose low orders see little change of the error from
+   one step to the next, -35..+7%. */
 double
 sym_step_factor_pred (double fac, double err, int q, double h,
                       double h_acc, double err_acc, double facmin)

@@ -739,8 +739,7 @@ test_adaptive_kepler (void)
      it 24/133, 17/222, 15/404. */
   for (int k = 0; k < 5; k++)
     CHECK (failed[k] <= (k ? 0.1 : 0.2) * (steps[k] + failed[k]),
-           "RelTol 1e-%d: "
-           "%ld failed steps of %ld", 4 + 2 * k, failed[k],
+           "RelTol 1e-%d: %ld failed steps of %ld", 4 + 2 * k, failed[k],
            steps[k] + failed[k]);
   for (int k = 1; k < 5; k++)
     CHECK (err[k] * 30 <= err[k - 1], "RelTol 1e-%d: error %.3g, at 1e-%d "

@@ -1,0 +1,59 @@
+## adaptive_runs.m -- adaptive steps of the three solvers on Kepler
+## (e = 0.6 and 0.9, 10 periods) and the pendulum (50 time units): steps,
+## failed steps, callbacks (fcn + Hessian) and the end-point error, at
+## RelTol = AbsTol from 1e-3 down.  Not part of `make bench` (it times
+## nothing); the step-size control's comments in src/core/control.c quote
+## it.  Run from the top directory after make:
+##
+##   octave-cli --path inst bench/adaptive_runs.m
+
+1;
+
+function [dy, ddy] = kepler (t, y)
+  q = y(1:2);  r = norm (q);
+  dy = [y(3:4); -q / r^3];
+  if (nargout > 1)
+    A = (eye (2) - (3 / r^2) * (q * q.')) / r^3;
+    ddy = [A, zeros(2); zeros(2), eye(2)];
+  endif
+endfunction
+
+function [dy, ddy] = pendulum (t, y)
+  dy = [y(2); -sin(y(1))];
+  if (nargout > 1)
+    ddy = [cos(y(1)), 0; 0, 1];
+  endif
+endfunction
+
+T = 2*pi;
+probs = {};
+for e = [0.6 0.9]
+  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+  ## after whole periods the exact solution is y0 again
+  probs(end+1, :) = {sprintf("Kepler e = %.1f", e), @kepler, [0 10*T], y0, y0};
+endfor
+yp0 = [0; 1.9];
+## reference: (9,8), order 16, at a small fixed step
+oref = symplecticset ("TimeStepSize", 1e-3, "Nodes", 8, "Q_DoFs", 9);
+[~, yr] = odeSPVI (@pendulum, [0 50], yp0, oref);
+probs(end+1, :) = {"pendulum", @pendulum, [0 50], yp0, yr(end, :).'};
+
+solvers = {@odeSPVI, @odeSV, @odeSE};
+printf ("%-16s %-8s %7s %7s %7s %8s %10s\n", "problem", "solver", "RelTol", ...
+        "steps", "failed", "calls", "error");
+for i = 1:rows (probs)
+  for k = 1:numel (solvers)
+    tols = [1e-3 1e-4 1e-6 1e-8 1e-10 1e-12];
+    if (k > 1)
+      tols = [1e-3 1e-4 1e-6];    # low orders: small steps below that
+    endif
+    for tol = tols
+      o = odeset ("RelTol", tol, "AbsTol", tol);
+      s = solvers{k} (probs{i, 2}, probs{i, 3}, probs{i, 4}, o);
+      printf ("%-16s %-8s %7.0e %7d %7d %8d %10.2e\n", probs{i, 1}, ...
+              func2str (solvers{k}), tol, s.stats.nsteps, s.stats.nfailed, ...
+              s.stats.nfevals + s.stats.npds, ...
+              norm (s.y(:, end) - probs{i, 5}, Inf));
+    endfor
+  endfor
+endfor
