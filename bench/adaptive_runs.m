@@ -1,6 +1,8 @@
 ## adaptive_runs.m -- adaptive steps of the three solvers on Kepler
-## (e = 0.6 and 0.9, 10 periods) and the pendulum (50 time units): steps,
-## failed steps, callbacks (fcn + Hessian) and the end-point error, at
+## (e = 0.6 and 0.9, 10 periods) and the pendulum (50 time units), with
+## the Hessian as second output of fcn, and odeSPVI on Kepler e = 0.6
+## without it (finite differences): steps, failed steps, callbacks (fcn
+## and Hessian, of them with the Hessian) and the end-point error, at
 ## RelTol = AbsTol from 1e-3 down.  Not part of `make bench` (it times
 ## nothing); the step-size control's comments in src/core/control.c quote
 ## it.  Run from the top directory after make:
@@ -18,6 +20,11 @@ function [dy, ddy] = kepler (t, y)
   endif
 endfunction
 
+function dy = kepler_f (t, y)
+  ## one output: the solver's matrices then by finite differences
+  dy = kepler (t, y);
+endfunction
+
 function [dy, ddy] = pendulum (t, y)
   dy = [y(2); -sin(y(1))];
   if (nargout > 1)
@@ -32,6 +39,8 @@ for e = [0.6 0.9]
   ## after whole periods the exact solution is y0 again
   probs(end+1, :) = {sprintf("Kepler e = %.1f", e), @kepler, [0 10*T], y0, y0};
 endfor
+y0 = probs{1, 4};
+probs(end+1, :) = {"Kepler 0.6, FD", @kepler_f, [0 10*T], y0, y0};
 yp0 = [0; 1.9];
 ## reference: (9,8), order 16, at a small fixed step
 oref = symplecticset ("TimeStepSize", 1e-3, "Nodes", 8, "Q_DoFs", 9);
@@ -39,20 +48,23 @@ oref = symplecticset ("TimeStepSize", 1e-3, "Nodes", 8, "Q_DoFs", 9);
 probs(end+1, :) = {"pendulum", @pendulum, [0 50], yp0, yr(end, :).'};
 
 solvers = {@odeSPVI, @odeSV, @odeSE};
-printf ("%-16s %-8s %7s %7s %7s %8s %10s\n", "problem", "solver", "RelTol", ...
-        "steps", "failed", "calls", "error");
+printf ("%-16s %-8s %7s %7s %7s %8s %7s %10s\n", "problem", "solver", "RelTol", ...
+        "steps", "failed", "calls", "Hess", "error");
 for i = 1:rows (probs)
   for k = 1:numel (solvers)
     tols = [1e-3 1e-4 1e-6 1e-8 1e-10 1e-12];
     if (k > 1)
       tols = [1e-3 1e-4 1e-6];    # low orders: small steps below that
+      if (strfind (probs{i, 1}, "FD"))
+        continue;
+      endif
     endif
     for tol = tols
       o = odeset ("RelTol", tol, "AbsTol", tol);
       s = solvers{k} (probs{i, 2}, probs{i, 3}, probs{i, 4}, o);
-      printf ("%-16s %-8s %7.0e %7d %7d %8d %10.2e\n", probs{i, 1}, ...
+      printf ("%-16s %-8s %7.0e %7d %7d %8d %7d %10.2e\n", probs{i, 1}, ...
               func2str (solvers{k}), tol, s.stats.nsteps, s.stats.nfailed, ...
-              s.stats.nfevals + s.stats.npds, ...
+              s.stats.nfevals + s.stats.npds, s.stats.npds, ...
               norm (s.y(:, end) - probs{i, 5}, Inf));
     endfor
   endfor

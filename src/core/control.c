@@ -72,7 +72,8 @@ sym_step_factor (double err, int q, double facmin, double facmax)
    level errors do not make a trend (as in implicit Runge-Kutta codes).
    Measured on 10 periods of Kepler e = 0.6, odeSPVI (4,3), RelTol =
    AbsTol = 1e-4..1e-12 (test_adaptive_kepler in tests/c/test_spvi.c
-   prints them): failed/accepted steps 45/131 85/220 137/400 58/734
+   prints them; the calls since fell further, see core_borrow in
+   step_spvi.c): failed/accepted steps 45/131 85/220 137/400 58/734
    0/1405 -> 24/133 17/222 15/404 2/754 0/1433, rhs + jac calls 4765 6876
    10763 14356 24398 -> 3967 5142 8173 13506 25003, end-point errors
    1.2e-2 8.8e-5 3.2e-7 3.0e-9 8.5e-12 -> 8.7e-3 9.6e-5 3.0e-7 9.7e-10

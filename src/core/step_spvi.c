@@ -56,7 +56,9 @@
    The matrix: from the node Jacobians at the start of a step (jac
    callbacks, m of them); then, for the next steps, from node Jacobians
    extrapolated in time (a polynomial through the node Jacobians of the
-   last one or two evaluations; no callback, one LU); evaluated anew after
+   last one or two evaluations; no callback, one LU; the companion's,
+   when it has none, interpolated from the method's of the same step,
+   core_borrow); evaluated anew after
    a solve that needed more than 2 corrections while its first contraction
    was slow (the matrix, not a far start, was to blame), and when h changed
    by > 20%.
@@ -439,6 +441,7 @@ core_A (const spvi_core *c, int j)
 }
 
 static void core_fill (spvi_core *c, double *M);
+static void core_keep (spvi_core *c);
 
 static int
 core_matrix (void *ctx, const double *x, double *M)
@@ -486,9 +489,19 @@ core_matrix (void *ctx, const double *x, double *M)
       if ((st = sym_jac_many (c->sys, m, c->tj, c->Y, c->F, c->A)))
         return st;
     }
-  /* keep them for the extrapolation (core_extrapolate): a new step's
-     evaluation becomes the latest, a second one on the same step (a
-     refresh inside sym_newton) replaces it */
+  core_keep (c);
+  core_fill (c, M);
+  return SYM_SUCCESS;
+}
+
+/* Keep the node Jacobians in c->A for the extrapolation
+   (core_extrapolate): a new step's evaluation becomes the latest, a
+   second one on the same step (a refresh inside sym_newton) replaces
+   it. */
+static void
+core_keep (spvi_core *c)
+{
+  const size_t nn = 2 * (size_t) c->d;
   if (c->nae > 0 && c->te[0] != c->t)
     {
       double *tmp = c->Ae[1];
@@ -500,11 +513,9 @@ core_matrix (void *ctx, const double *x, double *M)
     }
   else if (c->nae == 0)
     c->nae = 1;
-  memcpy (c->Ae[0], c->A, nn * nn * m * sizeof (double));
+  memcpy (c->Ae[0], c->A, nn * nn * (size_t) c->m * sizeof (double));
   c->te[0] = c->t;
   c->he[0] = c->h;
-  core_fill (c, M);
-  return SYM_SUCCESS;
 }
 
 /* The Newton matrix from the node Jacobians in c->A and the step c->h. */
@@ -713,6 +724,51 @@ core_extrapolate (spvi_core *c, sym_system *sys)
   return 1;
 }
 
+/* The companion's matrix, when it has none (a new h, a slow solve), from
+   the method's node Jacobians of the same step (evaluated there at (t,
+   h)) interpolated to the companion's nodes by the polynomial through
+   them: no callback, one LU.  Its first residual then takes f at its
+   nodes by rhs calls, not by calls that also give the Hessian, and no
+   finite differences are made for it.  Measured on adaptive Kepler e =
+   0.6, (4,3), 10 periods, RelTol 1e-4..1e-12 (tests/c/test_spvi.c): jac
+   calls 1003 1305 1211 1386 1725 -> 561 625 739 1030 1577, rhs calls
+   +0.1..7.5%, the same errors; timed in turns from Octave, 1-9% faster
+   with the Hessian as FCN's second output, 8-25% with finite
+   differences down to RelTol 1e-10 (bench/adaptive_runs.m lists the
+   calls).  Returns 1 if it made the matrix. */
+static int
+core_borrow (spvi_core *c, const spvi_core *src, sym_system *sys)
+{
+  const size_t nn = 2 * (size_t) c->d, nb = nn * nn;
+  const int ms = src->m;
+  if (src->nae < 1 || src->te[0] != c->t || src->he[0] != c->h
+      || ms > SPVI_JX_POINTS)
+    return 0;
+  double bw[SPVI_JX_POINTS], cb[SPVI_JX_POINTS];
+  bary_weights (ms, src->z, bw);
+  for (int i = 0; i < c->m; i++)
+    {
+      lagrange_basis (ms, src->z, bw, c->z[i], cb);
+      double *Ai = c->A + (size_t) i * nb;
+      for (size_t e = 0; e < nb; e++)
+        {
+          double v = 0.0;
+          for (int j = 0; j < ms; j++)
+            v += cb[j] * src->Ae[0][(size_t) j * nb + e];
+          Ai[e] = v;
+        }
+    }
+  core_keep (c);
+  core_fill (c, c->nw.lu.a);
+  if (sym_lu_factor (&c->nw.lu, &sys->cnt))
+    {
+      sym_newton_invalidate (&c->nw);   /* sym_newton evaluates one */
+      return 0;
+    }
+  c->nw.have_matrix = 1;
+  return 1;
+}
+
 /* Estimated error, relative to S, that the linear move of f_p from xf
    (the last evaluation) to x leaves in p_{k+1} = p_k + (h/2) sum_j w_j
    f_p,j: the move from xfo to xf by the same node Jacobians is compared
@@ -842,6 +898,8 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
   const double kq_before = c->nw.kq_ok ? c->nw.kq : -1.0;
   if (fast && c->nw.have_matrix)
     core_extrapolate (c, sys);
+  else if (fast && ! method)
+    core_borrow (c, &s->lo, sys);
   for (int i = 0; i < N; i++)
     c->scale[i] = S;
   /* The returned x is the one after the last correction (no residual
@@ -1341,7 +1399,9 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
      (10-29% fewer), the same end-point errors down to 1e-10, and at 1e-12
      8.5e-12 instead of 1.2e-9 (the companion's Newton tolerance was the
      floor: it is the value the run advances with).  The predictive step
-     control (control.c) then brought them to 3967 5142 8173 13506 25003. */
+     control (control.c) then brought them to 3967 5142 8173 13506 25003,
+     and the companion's interpolated matrices (core_borrow) to 3629 4750
+     8005 13330 24879. */
   const double tol_rf = SPVI_FINAL_TOL * s->tol;
   double tol_lo = tol_rf, tol_hi = tol_rf;
   if (yerr && s->est_rtol > 0)

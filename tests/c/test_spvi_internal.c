@@ -251,6 +251,55 @@ test_extrapolate (void)
   CHECK (worst < 1e-11, "extrapolated Jacobians off by %.3g", worst);
 }
 
+/* The companion's node Jacobians interpolated from the method's of the
+   same step (core_borrow): exact for Df linear in t (m >= 2 points), no
+   callback, and refused for another step or another h. */
+static void
+test_borrow (void)
+{
+  sym_system sys = ts_system (1, tlin_rhs, tlin_jac, NULL);
+  const double yk[2] = { 0.4, -0.3 };
+  double worst = 0.0;
+  int ok = 1;
+  for (int m = 2; m <= 4; m++)
+    {
+      spvi_core lo, hi;
+      if (core_init (&lo, 1, m + 1, m) || core_init (&hi, 1, m + 2, m + 1))
+        {
+          ok = 0;
+          continue;
+        }
+      double *M = malloc ((size_t) lo.N * lo.N * sizeof (double));
+      const double t = 0.5, h = 0.25;
+      setup (&lo, &sys, t, h, yk);
+      core_matrix (&lo, lo.x, M);
+      long njac = sys.cnt.njac;
+      setup (&hi, &sys, t, h, yk);
+      ok &= core_borrow (&hi, &lo, &sys) == 1 && hi.nw.have_matrix
+            && hi.nw.lu.factored && sys.cnt.njac == njac;
+      for (int j = 0; j < m + 1; j++)
+        {
+          double ex[4];
+          tlin_jac (hi.tj[j], NULL, ex, NULL);
+          for (int e = 0; e < 4; e++)
+            worst = fmax (worst, fabs (hi.A[j * 4 + e] - ex[e]));
+        }
+      /* not from another step, nor at another h */
+      sym_newton_invalidate (&hi.nw);
+      setup (&hi, &sys, t + h, h, yk);
+      ok &= core_borrow (&hi, &lo, &sys) == 0 && ! hi.nw.have_matrix;
+      setup (&hi, &sys, t, 0.5 * h, yk);
+      ok &= core_borrow (&hi, &lo, &sys) == 0 && ! hi.nw.have_matrix;
+      free (M);
+      core_free (&lo);
+      core_free (&hi);
+    }
+  printf ("companion's node Jacobians from the method's, Df linear in t: "
+          "max error %.2e\n", worst);
+  CHECK (ok, "borrowed where it should not be, or not borrowed");
+  CHECK (worst < 1e-13, "borrowed Jacobians off by %.3g", worst);
+}
+
 /* The Gauss transform inverts the Legendre-Vandermonde matrix. */
 static void
 test_vinv (void)
@@ -286,6 +335,7 @@ main (void)
   test_matrix ();
   test_predictor_exact ();
   test_extrapolate ();
+  test_borrow ();
   test_vinv ();
   return tu_finish ("test_spvi_internal");
 }
