@@ -643,6 +643,43 @@ core_full_newton (spvi_core *c, sym_system *sys)
   return SYM_NEWTON_FAIL;
 }
 
+/* The node Jacobians c->A at the points xe[i] (one per node) from np
+   samples, the blocks src[j] at the points xs[j] (barycentric weights
+   bw): their interpolating polynomial. */
+static void
+core_interp_A (spvi_core *c, int np, const double *xs, const double *bw,
+               const double *const *src, const double *xe)
+{
+  const size_t nn = 2 * (size_t) c->d, nb = nn * nn;
+  double cb[2 * SPVI_JX_POINTS];
+  for (int i = 0; i < c->m; i++)
+    {
+      lagrange_basis (np, xs, bw, xe[i], cb);
+      double *Ai = c->A + (size_t) i * nb;
+      for (size_t e = 0; e < nb; e++)
+        {
+          double v = 0.0;
+          for (int j = 0; j < np; j++)
+            v += cb[j] * src[j][e];
+          Ai[e] = v;
+        }
+    }
+}
+
+/* The matrix from c->A, factored; 0 (and no matrix: sym_newton evaluates
+   one) if the LU failed. */
+static int
+core_refactor (spvi_core *c, sym_system *sys)
+{
+  core_fill (c, c->nw.lu.a);
+  if (sym_lu_factor (&c->nw.lu, &sys->cnt))
+    {
+      sym_newton_invalidate (&c->nw);
+      return 0;
+    }
+  return 1;
+}
+
 /* The node Jacobians of this step (c->A) extrapolated in time from the
    evaluated ones, and the matrix and LU from them; 0 if not done (nothing
    to extrapolate from, or too far).  The node Jacobians are smooth
@@ -705,22 +742,11 @@ core_extrapolate (spvi_core *c, sym_system *sys)
       if (lam <= SPVI_JX_LEBESGUE || np - off == 1)
         break;
     }
+  double xe[SPVI_MAX_DOFS + 1];
   for (int i = 0; i < m; i++)
-    {
-      lagrange_basis (np - off, ts + off, bw,
-                      (c->tj[i] - c->te[0]) / c->he[0], cb);
-      double *Ai = c->A + (size_t) i * nb;
-      for (size_t e = 0; e < nb; e++)
-        {
-          double v = 0.0;
-          for (int j = 0; j < np - off; j++)
-            v += cb[j] * src[off + j][e];
-          Ai[e] = v;
-        }
-    }
-  core_fill (c, c->nw.lu.a);
-  if (sym_lu_factor (&c->nw.lu, &sys->cnt))
-    sym_newton_invalidate (&c->nw);   /* sym_newton evaluates one */
+    xe[i] = (c->tj[i] - c->te[0]) / c->he[0];
+  core_interp_A (c, np - off, ts + off, bw, src + off, xe);
+  core_refactor (c, sys);
   return 1;
 }
 
@@ -744,27 +770,15 @@ core_borrow (spvi_core *c, const spvi_core *src, sym_system *sys)
   if (src->nae < 1 || src->te[0] != c->t || src->he[0] != c->h
       || ms > SPVI_JX_POINTS)
     return 0;
-  double bw[SPVI_JX_POINTS], cb[SPVI_JX_POINTS];
+  double bw[SPVI_JX_POINTS];
+  const double *sp[SPVI_JX_POINTS];
   bary_weights (ms, src->z, bw);
-  for (int i = 0; i < c->m; i++)
-    {
-      lagrange_basis (ms, src->z, bw, c->z[i], cb);
-      double *Ai = c->A + (size_t) i * nb;
-      for (size_t e = 0; e < nb; e++)
-        {
-          double v = 0.0;
-          for (int j = 0; j < ms; j++)
-            v += cb[j] * src->Ae[0][(size_t) j * nb + e];
-          Ai[e] = v;
-        }
-    }
+  for (int j = 0; j < ms; j++)
+    sp[j] = src->Ae[0] + (size_t) j * nb;
+  core_interp_A (c, ms, src->z, bw, sp, c->z);
   core_keep (c);
-  core_fill (c, c->nw.lu.a);
-  if (sym_lu_factor (&c->nw.lu, &sys->cnt))
-    {
-      sym_newton_invalidate (&c->nw);   /* sym_newton evaluates one */
-      return 0;
-    }
+  if (! core_refactor (c, sys))
+    return 0;
   c->nw.have_matrix = 1;
   return 1;
 }
