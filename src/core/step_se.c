@@ -58,10 +58,9 @@
 #include <string.h>
 
 typedef struct {
+  sym_onestep o;         /* first: accept, dense, reset (steprec.h) */
   int d, n;
   int separable, want_f;
-  sym_recs r;            /* last accepted step, step being tried */
-  sym_fcache fc;         /* the last f evaluated */
   sym_kept kn;           /* Newton for p_{k+1} */
   double *block;         /* the one allocation holding the arrays */
   double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
@@ -96,9 +95,9 @@ se_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
       return NULL;
     }
   double *w = s->block;
-  sym_recs_place (&s->r, n, 0, w);
+  sym_recs_place (&s->o.r, n, 0, w);
   w += sym_recs_len (n, 0);
-  sym_fcache_place (&s->fc, d, w);
+  sym_fcache_place (&s->o.fc, d, w);
   w += sym_fcache_len (d);
   s->x = w; w += d;
   s->scale = w; w += d;
@@ -128,62 +127,35 @@ se_step (void *state, sym_system *sys, double t, double h, const double *y,
       || h == 0.0)
     return SYM_EBADINPUT;
   const int d = s->d;
-  const int cont = sym_recs_begin (&s->r, t, h, y);
-  sym_rec *tr = s->r.trial, *cu = s->r.cur;
+  const int cont = sym_recs_begin (&s->o.r, t, h, y);
+  sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
   const double *q0 = tr->y0, *p0 = tr->y0 + d;
   double *q1 = tr->y1, *p1 = tr->y1 + d;
 
   if (s->separable)
     {
-      if ((st = sym_recs_f0 (&s->r, sys)))
+      if ((st = sym_recs_f0 (&s->o.r, sys)))
         return st;
       for (int i = 0; i < d; i++)
         p1[i] = p0[i] + h * tr->f0[d + i];
-      st = sym_fcache_f (&s->fc, sys, t, q0, p1);
+      st = sym_fcache_f (&s->o.fc, sys, t, q0, p1);
       if (st)
         return st;
       for (int i = 0; i < d; i++)
-        q1[i] = q0[i] + h * s->fc.fw[i];
+        q1[i] = q0[i] + h * s->o.fc.fw[i];
     }
   else
     {
-      sym_kick kick = { d, &s->fc, &s->kn, sys, t, h, h, tr->y0 };
-      if ((st = sym_kick_solve (&kick, &s->r, cont, cu->y0 + d, s->x,
+      sym_kick kick = { d, &s->o.fc, &s->kn, sys, t, h, h, tr->y0 };
+      if ((st = sym_kick_solve (&kick, &s->o.r, cont, cu->y0 + d, s->x,
                                 s->scale, s->rv)))
         return st;
       /* the cache holds f at [q_k; P] */
       memcpy (p1, s->x, (size_t) d * sizeof (double));
       for (int i = 0; i < d; i++)
-        q1[i] = q0[i] + h * s->fc.fw[i];
+        q1[i] = q0[i] + h * s->o.fc.fw[i];
     }
-  return sym_recs_finish (&s->r, sys, s->want_f, yerr, ynext);
-}
-
-static void
-se_accept (void *state)
-{
-  se_state *s = state;
-  sym_recs_accept (&s->r);
-}
-
-static int
-se_dense (void *state, sym_system *sys, double t, double *y)
-{
-  se_state *s = state;
-  (void) sys;
-  if (! s)
-    return SYM_EBADINPUT;
-  return sym_recs_dense (&s->r, t, y);
-}
-
-static void
-se_reset (void *state)
-{
-  se_state *s = state;
-  /* forget the last step (dense output, predictor, FSAL) and every f kept;
-     the Newton matrix stays: newton.c refreshes it if it no longer serves */
-  sym_recs_forget (&s->r);
-  s->fc.have_fw = 0;
+  return sym_recs_finish (&s->o.r, sys, s->want_f, yerr, ynext);
 }
 
 static int
@@ -194,8 +166,8 @@ se_order (const void *state)
 }
 
 static const sym_stepper_type se_type = {
-  "se", 1, se_order, se_order, se_alloc, se_step, se_accept, se_dense,
-  se_reset, se_free
+  "se", 1, se_order, se_order, se_alloc, se_step, sym_onestep_accept,
+  sym_onestep_dense, sym_onestep_reset, se_free
 };
 
 const sym_stepper_type *const sym_step_se = &se_type;

@@ -73,10 +73,9 @@
 #define FPE(rec, d) ((rec)->aux + (d))
 
 typedef struct {
+  sym_onestep o;         /* first: accept, dense, reset (steprec.h) */
   int d, n;
   int separable, want_f;
-  sym_recs r;            /* last accepted step, step being tried */
-  sym_fcache fc;         /* the last f evaluated */
   sym_kept kp, kq;       /* Newton for equations (1) and (2) */
   double *block;         /* the one allocation holding the arrays */
   double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
@@ -94,12 +93,12 @@ res_q (void *ctx, const double *x, double *r)
 {
   sv_state *s = ctx;
   const int d = s->d;
-  int st = sym_fcache_f (&s->fc, s->sys, s->tk + s->hk, x, s->pk);
+  int st = sym_fcache_f (&s->o.fc, s->sys, s->tk + s->hk, x, s->pk);
   if (st)
     return st;
   const double hh = 0.5 * s->hk;
   for (int i = 0; i < d; i++)
-    r[i] = x[i] - s->yk[i] - hh * s->fqa[i] - hh * s->fc.fw[i];
+    r[i] = x[i] - s->yk[i] - hh * s->fqa[i] - hh * s->o.fc.fw[i];
   return SYM_SUCCESS;
 }
 
@@ -108,14 +107,14 @@ mat_q (void *ctx, const double *x, double *a)
 {
   sv_state *s = ctx;
   const int d = s->d, n = s->n;
-  int st = sym_fcache_jac (&s->fc, s->sys, s->tk + s->hk, x, s->pk);
+  int st = sym_fcache_jac (&s->o.fc, s->sys, s->tk + s->hk, x, s->pk);
   if (st)
     return st;
   const double hh = 0.5 * s->hk;
   for (int j = 0; j < d; j++)
     for (int i = 0; i < d; i++)
       a[i + (size_t) j * d] = (i == j ? 1.0 : 0.0)
-        - hh * s->fc.jw[i + (size_t) j * n];
+        - hh * s->o.fc.jw[i + (size_t) j * n];
   sym_kept_built (&s->kq, s->hk);
   return SYM_SUCCESS;
 }
@@ -151,9 +150,9 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
       return NULL;
     }
   double *w = s->block;
-  sym_recs_place (&s->r, n, 2 * d, w);
+  sym_recs_place (&s->o.r, n, 2 * d, w);
   w += sym_recs_len (n, 2 * d);
-  sym_fcache_place (&s->fc, d, w);
+  sym_fcache_place (&s->o.fc, d, w);
   w += sym_fcache_len (d);
   s->x = w; w += d;
   s->scale = w; w += d;
@@ -186,8 +185,8 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       || h == 0.0)
     return SYM_EBADINPUT;
   const int d = s->d;
-  const int cont = sym_recs_begin (&s->r, t, h, y);
-  sym_rec *tr = s->r.trial, *cu = s->r.cur;
+  const int cont = sym_recs_begin (&s->o.r, t, h, y);
+  sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
   const double *q0 = tr->y0, *p0 = tr->y0 + d;
   double *q1 = tr->y1, *p1 = tr->y1 + d, *ph = PH (tr), *fpe = FPE (tr, d);
   const double hh = 0.5 * h;
@@ -203,18 +202,18 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
         fp = FPE (cu, d);
       else
         {
-          if ((st = sym_recs_f0 (&s->r, sys)))
+          if ((st = sym_recs_f0 (&s->o.r, sys)))
             return st;
           fp = tr->f0 + d;
         }
       for (int i = 0; i < d; i++)
         ph[i] = p0[i] + hh * fp[i];
-      st = sym_fcache_f (&s->fc, sys, t + hh, q0, ph);     /* A */
+      st = sym_fcache_f (&s->o.fc, sys, t + hh, q0, ph);     /* A */
       if (st)
         return st;
       for (int i = 0; i < d; i++)
-        q1[i] = q0[i] + h * s->fc.fw[i];
-      st = sym_fcache_f (&s->fc, sys, tr->tend, q1, ph);   /* B */
+        q1[i] = q0[i] + h * s->o.fc.fw[i];
+      st = sym_fcache_f (&s->o.fc, sys, tr->tend, q1, ph);   /* B */
       if (st)
         return st;
     }
@@ -223,12 +222,12 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       double *x = s->x;
       /* (1), started by an explicit half kick when f(t, y) is known, else
          by the last step's first half kick */
-      sym_kick kick = { d, &s->fc, &s->kp, sys, t, h, hh, tr->y0 };
-      if ((st = sym_kick_solve (&kick, &s->r, cont, PH (cu), x, s->scale,
+      sym_kick kick = { d, &s->o.fc, &s->kp, sys, t, h, hh, tr->y0 };
+      if ((st = sym_kick_solve (&kick, &s->o.r, cont, PH (cu), x, s->scale,
                                 s->rv)))
         return st;
       memcpy (ph, x, (size_t) d * sizeof (double));
-      memcpy (s->fqa, s->fc.fw, (size_t) d * sizeof (double));
+      memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
       /* (2) */
       s->pk = ph;
       for (int i = 0; i < d; i++)
@@ -245,38 +244,10 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
   /* (3): the cache holds f at [q_{k+1}; p_{k+1/2}] on both paths */
   for (int i = 0; i < d; i++)
     {
-      fpe[i] = s->fc.fw[d + i];
-      p1[i] = ph[i] + hh * s->fc.fw[d + i];
+      fpe[i] = s->o.fc.fw[d + i];
+      p1[i] = ph[i] + hh * s->o.fc.fw[d + i];
     }
-  return sym_recs_finish (&s->r, sys, s->want_f, yerr, ynext);
-}
-
-static void
-sv_accept (void *state)
-{
-  sv_state *s = state;
-  sym_recs_accept (&s->r);
-}
-
-static int
-sv_dense (void *state, sym_system *sys, double t, double *y)
-{
-  sv_state *s = state;
-  (void) sys;
-  if (! s)
-    return SYM_EBADINPUT;
-  return sym_recs_dense (&s->r, t, y);
-}
-
-static void
-sv_reset (void *state)
-{
-  sv_state *s = state;
-  /* forget the last step (dense output, predictor, FSAL) and every f kept;
-     the Newton matrices stay: newton.c refreshes them if they no longer
-     serve */
-  sym_recs_forget (&s->r);
-  s->fc.have_fw = 0;
+  return sym_recs_finish (&s->o.r, sys, s->want_f, yerr, ynext);
 }
 
 static int
@@ -287,8 +258,8 @@ sv_order (const void *state)
 }
 
 static const sym_stepper_type sv_type = {
-  "sv", 2, sv_order, sv_order, sv_alloc, sv_step, sv_accept, sv_dense,
-  sv_reset, sv_free
+  "sv", 2, sv_order, sv_order, sv_alloc, sv_step, sym_onestep_accept,
+  sym_onestep_dense, sym_onestep_reset, sv_free
 };
 
 const sym_stepper_type *const sym_step_sv = &sv_type;

@@ -186,6 +186,29 @@ sym_recs_forget (sym_recs *r)
   r->rec[1].have_f0 = r->rec[1].have_f1 = 0;
 }
 
+void
+sym_onestep_accept (void *state)
+{
+  sym_recs_accept (&((sym_onestep *) state)->r);
+}
+
+int
+sym_onestep_dense (void *state, sym_system *sys, double t, double *y)
+{
+  (void) sys;
+  if (! state)
+    return SYM_EBADINPUT;
+  return sym_recs_dense (&((sym_onestep *) state)->r, t, y);
+}
+
+void
+sym_onestep_reset (void *state)
+{
+  sym_onestep *o = state;
+  sym_recs_forget (&o->r);
+  o->fc.have_fw = 0;
+}
+
 /* ---------------------------------------------------------------- f cache */
 
 size_t

@@ -61,6 +61,21 @@ typedef struct {
   int have_fw;
 } sym_fcache;
 
+/* The head of the SE and SV states (their first member): what their
+   accept, dense output and reset act on */
+typedef struct {
+  sym_recs r;            /* last accepted step, step being tried */
+  sym_fcache fc;         /* the last f evaluated */
+} sym_onestep;
+
+/* accept, dense and reset of a state that starts with a sym_onestep;
+   reset forgets the last step (dense output, predictor, FSAL) and every f
+   kept, the Newton matrices stay: newton.c refreshes them if they no
+   longer serve */
+void sym_onestep_accept (void *state);
+int sym_onestep_dense (void *state, sym_system *sys, double t, double *y);
+void sym_onestep_reset (void *state);
+
 size_t sym_fcache_len (int d);
 void sym_fcache_place (sym_fcache *c, int d, double *w);
 /* f at (t, [a; b]) into fw; no call when fw already holds f there */
