@@ -191,6 +191,7 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
   nw->iters = 0;
   nw->fresh = 0;
   nw->one = 0;
+  nw->kq_new = 0;
   memcpy (nw->x0, x, (size_t) n * sizeof (double));
   if (! nw->have_matrix)
     {
@@ -241,6 +242,7 @@ sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
                     {
                       nw->kq = dxn / (dxold * dxold);
                       nw->kq_ok = 1;
+                      nw->kq_new = 1;
                     }
                   nw->kq_age = 0;
                 }

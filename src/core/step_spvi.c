@@ -909,7 +909,6 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
       if (c->nw.kq_ok && ! (fabs (h - c->h_kq) <= 0.2 * fabs (c->h_kq)))
         c->nw.kq_ok = 0;
     }
-  const double kq_before = c->nw.kq_ok ? c->nw.kq : -1.0;
   if (fast && c->nw.have_matrix)
     core_extrapolate (c, sys);
   else if (fast && ! method)
@@ -933,7 +932,7 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
   sym_newton_problem prob = { core_residual, core_matrix, c };
   memcpy (c->x0, c->x, (size_t) N * sizeof (double));
   st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &sys->cnt);
-  if (every && c->nw.kq_ok && c->nw.kq != kq_before)
+  if (every && c->nw.kq_new)
     c->h_kq = h;
   /* a failed callback of the matrix comes back with its own status
      (newton.c): no retry, it asks for a smaller step */

@@ -175,11 +175,11 @@ typedef struct {
      |dx_2| / |dx_1|^2 on solves where |dx_2| is well above round-off; a
      solve then stops after one correction when 100 kq |dx_1|^2 <= tol, at
      most 16 times in a row before a second correction measures again
-     (see newton.c).  one: the last solve stopped so.  kq_ok = 0 forgets
-     kq (a new h, a new problem). */
+     (see newton.c).  one: the last solve stopped so; kq_new: it measured
+     kq.  kq_ok = 0 forgets kq (a new h, a new problem). */
   int quad;
   double kq;
-  int kq_ok, kq_age, one;
+  int kq_ok, kq_age, one, kq_new;
   double *r, *dx, *x0;   /* work */
 } sym_newton;
 
