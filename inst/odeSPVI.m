@@ -149,13 +149,21 @@
 ## adaptive mode see RelTol.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}; output times, refined rows and event locations come
-## from the method's own polynomials (q(z), and the polynomial through
-## p(k), the nodal p_j and p(k+1)).  Within a step these polynomials are
-## accurate to O(h^Q_DoFs) (q) and O(h^(Nodes+2)) (p), less than the order
-## of the step points: over a run the interpolated rows stay as accurate as
-## the step points (their errors are dominated by the accumulated error),
-## but event times located in a short adaptive run can be less accurate
-## than the steps.  @code{Refine} defaults to 1 (step points only); as in
+## from the method's own dense output: for the pairs Q_DoFs = Nodes + 1
+## (the default), the integral of the polynomial through y' at the step's
+## ends and at the nodes of the solve the run advances with (the companion
+## of one more node in adaptive runs), which ends on the step's value.  It
+## costs a call of @var{fcn} at each step's end (at most one per step, and
+## only for steps with output or an event inside); its local error is
+## O(h^(Nodes+3)) in adaptive runs and O(h^(Nodes+2)) with a fixed step.
+## Kepler (e = 0.6), one period, 401 output times: at RelTol = AbsTol =
+## 1e-10 within 2.6e-10 of the exact solution (the step points 5e-11;
+## @code{ode45} 7.4e-9), and with TimeStepSize = 2*pi/200 within 1.3e-7, as
+## the step points (tests/test_spvi.m).  Other pairs, and a step with
+## NaN or Inf from @var{fcn} at an end, use the solution's own polynomials
+## (q(z), and the polynomial through p(k), the nodal p_j and p(k+1)),
+## accurate to O(h^Q_DoFs) (q) and O(h^(Nodes+2)) (p) within a step.
+## @code{Refine} defaults to 1 (step points only); as in
 ## @code{ode45} it is ignored with more than two @var{tspan} elements and
 ## for the @var{sol} output.
 ## @end table

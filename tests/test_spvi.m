@@ -49,6 +49,22 @@
 %!  dy = kepler (t, y);
 %!endfunction
 
+%!function dy = kepler_count (t, y)
+%!  global KEPLER_CALLS
+%!  KEPLER_CALLS++;
+%!  dy = kepler (t, y);
+%!endfunction
+
+%!function y = kepler_exact (t, e)
+%!  ## Kepler's equation E - e sin E = t (period 2 pi, pericentre at t = 0)
+%!  E = t(:).';
+%!  for it = 1:60
+%!    E -= (E - e * sin (E) - t(:).') ./ (1 - e * cos (E));
+%!  endfor
+%!  dE = 1 ./ (1 - e * cos (E));
+%!  y = [cos(E) - e; sqrt(1-e^2) * sin(E); -sin(E) .* dE; sqrt(1-e^2) * cos(E) .* dE].';
+%!endfunction
+
 ## ----------------------------------------------------------------- orders
 %!test
 %! ## slopes on the pendulum, y0 = [1; 1], t in [0, 10], against the exact
@@ -213,6 +229,36 @@
 %! tm = s.x(5) * (1 - 1e-13);
 %! [t, y] = odeSPVI (@kepler, [0, tm, 2*pi], y0, odeset ("RelTol", 1e-6, "AbsTol", 1e-6));
 %! assert (y(2, :), s.y(:, 5).', 1e-9);
+
+%!test
+%! ## output times between the steps (Kepler e = 0.6, one period, 401 times)
+%! ## against Kepler's equation: the dense output interpolates y' at the
+%! ## step's ends and the nodes of the solve the run advances with.  At
+%! ## RelTol = AbsTol = 1e-10 its error is 2.6e-10 (the step points' 5e-11;
+%! ## the solution's own polynomials gave 6.3e-7, ode45 7.4e-9), for at most
+%! ## one more call per step (f at each step's end)
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! o = odeset ("RelTol", 1e-10, "AbsTol", 1e-10);
+%! ts = linspace (0, 2*pi, 401);
+%! [t, y] = odeSPVI (@kepler1, ts, y0, o);
+%! assert (max (abs (y - kepler_exact (ts, e))(:)) < 1e-9);
+%! global KEPLER_CALLS
+%! KEPLER_CALLS = 0;
+%! s0 = odeSPVI (@kepler_count, [0 2*pi], y0, o);
+%! n0 = KEPLER_CALLS;
+%! KEPLER_CALLS = 0;
+%! [t, y2] = odeSPVI (@kepler_count, ts, y0, o);
+%! assert (y2, y);
+%! ncalls = KEPLER_CALLS;
+%! clear -global KEPLER_CALLS
+%! assert (ncalls > n0 && ncalls <= n0 + s0.stats.nsteps + 1);
+%! ## fixed step, (4,3), h = T/200: as accurate between the steps as at them
+%! ## (1.3e-7 both; the solution's own polynomials gave 1.5e-6)
+%! o = symplecticset ("TimeStepSize", 2*pi/200);
+%! [~, y] = odeSPVI (@kepler1, ts, y0, o);
+%! s = odeSPVI (@kepler1, [0 2*pi], y0, o);
+%! es = max (abs (s.y.' - kepler_exact (s.x, e))(:));
+%! assert (max (abs (y - kepler_exact (ts, e))(:)) < 1.5 * es);
 
 ## ----------------------------------------------------------------- bad pairs
 %!error <degenerate pair> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 3, "Nodes", 1))

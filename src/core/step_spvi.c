@@ -94,8 +94,21 @@
    linear correction (z+1)/2 (q_companion - q_low)(1), so the dense output
    stays continuous and ends on the step's value.
 
-   Dense output: q from the Legendre series of the last accepted step, p
-   from the polynomial through (-1, p_k), (z_j, P_j), (1, p_{k+1}). */
+   Dense output (the pairs n - 1 = m): y_k plus the integral of the
+   polynomial through dy/dz at -1, at the nodes of the solve the run
+   advances with (the method's, or the companion's in adaptive runs:
+   stage order m + 1) and at +1, with f evaluated at the step's ends when
+   first needed (f at the end of one step is f at the start of the next).
+   The node values are off by O(h^(M+1)) for M nodes, so the local error
+   is O(h^(M+2)): O(h^(m+3)) adaptive, O(h^(m+2)) fixed, against
+   O(h^(m+1)) for the solution's polynomials alone (tests/c/test_spvi.c:
+   slope 5.0 against 4.0 for (4,3)).  By Gauss orthogonality the integral
+   over the step is the quadrature that gave y_{k+1} (m >= 2); the end
+   mismatch, round-off then and O(h^3) for (2,1), is spread linearly, so
+   the output ends on the step's value.  Without f at an end (NaN there),
+   and for the other pairs: q from the Legendre series of the last
+   accepted step, p from the polynomial through (-1, p_k), (z_j, P_j),
+   (1, p_{k+1}). */
 #include "sym.h"
 #include "control.h"
 
@@ -186,6 +199,14 @@ typedef struct {
   double *dq;          /* d: end correction of q (adaptive), or zeros */
   int has_dq;
   int cont;            /* xp continued the step before, of the same h */
+  /* dense output of the pairs n - 1 = m (see spvi_dense): dy/dz at
+     -1, the M nodes of the solve the run advances with, +1, 2d each; the
+     ends are h/2 f(t, y) there, evaluated when first needed (fe0, fe1:
+     f itself), the nodes' from the solution */
+  double *D;           /* (m + 3) x 2d */
+  double *fe0, *fe1;   /* 2d each */
+  double *emis;        /* 2d: y1 - u(1), the end mismatch (see spvi_dense) */
+  int M, have_fe0, have_fe1, have_emis;
 } spvi_rec;
 
 typedef struct {
@@ -202,7 +223,9 @@ typedef struct {
   double *xi, *vinv;   /* n Gauss points; a_i = sum_l vinv[i*n+l] v(xi_l) */
   double *f0;          /* 2d: f(t_k, y_k) for the Euler start */
   double *lv, *dlv;    /* n + 1: Legendre values (work) */
-  double *cb;          /* m + 2: Lagrange basis values (work) */
+  double *cb;          /* m + 3: Lagrange basis values (work) */
+  double *gz, *gw;     /* ng Gauss points on [-1, 1] for the dense output */
+  int ng;
   double *vq;          /* n d: values of q (work) */
   /* errors of the polynomial prediction (solution - prediction) of the
      last nhist accepted steps, newest first, SPVI_HIST + 1 of N each; all
@@ -1060,7 +1083,12 @@ rec_free (spvi_rec *r)
   sym_free (r->P);
   sym_free (r->xp);
   sym_free (r->dq);
+  sym_free (r->D);
+  sym_free (r->fe0);
+  sym_free (r->fe1);
+  sym_free (r->emis);
   r->y0 = r->y1 = r->a = r->P = r->xp = r->dq = NULL;
+  r->D = r->fe0 = r->fe1 = r->emis = NULL;
 }
 
 static int
@@ -1073,7 +1101,12 @@ rec_init (spvi_rec *r, int d, int n, int m)
   r->P = sym_calloc ((size_t) m * d, sizeof (double));
   r->xp = sym_calloc ((size_t) (n - 1 + m) * d, sizeof (double));
   r->dq = sym_calloc ((size_t) d, sizeof (double));
-  if (! r->y0 || ! r->y1 || ! r->a || ! r->P || ! r->xp || ! r->dq)
+  r->D = sym_calloc ((size_t) (m + 3) * 2 * d, sizeof (double));
+  r->fe0 = sym_calloc (2 * (size_t) d, sizeof (double));
+  r->fe1 = sym_calloc (2 * (size_t) d, sizeof (double));
+  r->emis = sym_calloc (2 * (size_t) d, sizeof (double));
+  if (! r->y0 || ! r->y1 || ! r->a || ! r->P || ! r->xp || ! r->dq
+      || ! r->D || ! r->fe0 || ! r->fe1 || ! r->emis)
     {
       rec_free (r);
       return SYM_ENOMEM;
@@ -1097,6 +1130,8 @@ spvi_free (void *state)
   sym_free (s->lv);
   sym_free (s->dlv);
   sym_free (s->cb);
+  sym_free (s->gz);
+  sym_free (s->gw);
   sym_free (s->vq);
   sym_free (s->dhist);
   sym_free (s);
@@ -1165,11 +1200,17 @@ spvi_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
       s->dlv = sym_calloc (n + 2, sizeof (double));
       s->cb = sym_calloc (m + 3, sizeof (double));
       s->vq = sym_calloc ((size_t) n * d, sizeof (double));
+      /* exact for the integrand of the dense output, of degree <= m + 2 */
+      s->ng = m / 2 + 2;
+      s->gz = sym_calloc (s->ng, sizeof (double));
+      s->gw = sym_calloc (s->ng, sizeof (double));
       s->dhist = sym_calloc ((size_t) (SPVI_HIST + 1) * s->lo.N,
                              sizeof (double));
       if (! s->xi || ! s->vinv || ! s->f0 || ! s->lv || ! s->dlv || ! s->cb
-          || ! s->vq || ! s->dhist)
+          || ! s->vq || ! s->dhist || ! s->gz || ! s->gw)
         st = SYM_ENOMEM;
+      if (! st)
+        st = sym_gauss_legendre (s->ng, s->gz, s->gw);
     }
   /* The Gauss transform: for a polynomial v of degree < n,
      a_i = (2i+1)/2 sum_l w_l v(xi_l) l_i(xi_l) (exact, the products have
@@ -1238,6 +1279,83 @@ rec_dq (const spvi_state *s, const spvi_rec *r, double z, double *q)
         v += r->a[(size_t) (i - 1) * d + k]
              * (s->lv[i] - ((i % 2) ? -1.0 : 1.0));
       q[k] = v;
+    }
+}
+
+/* The dense output's data from the solve c (at its final x) into r: the
+   nodes' dy/dz, dq/dz from the q polynomial and dp/dz = h/2 f_p (moved
+   to the final x by core_solve).  The ends are not known yet. */
+static void
+rec_nodes (spvi_rec *r, const spvi_core *c)
+{
+  const int d = c->d, n = c->n, m = c->m;
+  const size_t nn = 2 * (size_t) d;
+  const double hh = 0.5 * c->h;
+  for (int j = 0; j < m; j++)
+    {
+      double *Dj = r->D + (size_t) (j + 1) * nn;
+      for (int k = 0; k < d; k++)
+        {
+          double v = 0.0;
+          for (int i = 1; i < n; i++)
+            v += c->dl[j * n + i] * c->x[(size_t) (i - 1) * d + k];
+          Dj[k] = v;
+          Dj[d + k] = hh * c->F[(size_t) j * nn + d + k];
+        }
+    }
+  r->M = m;
+  r->have_fe0 = r->have_fe1 = r->have_emis = 0;
+}
+
+/* dy/dz at the ends of r, from f there (one call each when not known) */
+static int
+rec_ends (spvi_rec *r, sym_system *sys, int d)
+{
+  const size_t nn = 2 * (size_t) d;
+  const double hh = 0.5 * r->h;
+  int st;
+  if (! r->have_fe0)
+    {
+      if ((st = sym_rhs (sys, r->t, r->y0, r->fe0)))
+        return st;
+      r->have_fe0 = 1;
+    }
+  if (! r->have_fe1)
+    {
+      if ((st = sym_rhs (sys, r->tend, r->y1, r->fe1)))
+        return st;
+      r->have_fe1 = 1;
+    }
+  for (size_t i = 0; i < nn; i++)
+    {
+      r->D[i] = hh * r->fe0[i];
+      r->D[(size_t) (r->M + 1) * nn + i] = hh * r->fe1[i];
+    }
+  return SYM_SUCCESS;
+}
+
+/* u = the integral from -1 to z of the polynomial through r's dy/dz at
+   -1, its M nodes and +1 (Gauss quadrature, exact: the degree is M + 1
+   <= m + 2) */
+static void
+rec_integral (const spvi_state *s, const spvi_rec *r, double z, double *u)
+{
+  const spvi_core *c = r->M == s->m ? &s->lo : &s->hi;
+  const int np = r->M + 2;
+  const size_t nn = 2 * (size_t) s->d;
+  const double half = 0.5 * (z + 1.0);
+  memset (u, 0, nn * sizeof (double));
+  for (int g = 0; g < s->ng; g++)
+    {
+      lagrange_basis (np, c->xb, c->bw, -1.0 + half * (s->gz[g] + 1.0),
+                      s->cb);
+      for (int i = 0; i < np; i++)
+        {
+          const double wgt = half * s->gw[g] * s->cb[i];
+          const double *Di = r->D + (size_t) i * nn;
+          for (size_t k = 0; k < nn; k++)
+            u[k] += wgt * Di[k];
+        }
     }
 }
 
@@ -1433,6 +1551,8 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
   tr->h = h;
   tr->tend = t + h;
   tr->has_dq = 0;
+  if (n - 1 == m)
+    rec_nodes (tr, &s->lo);
 
   if (yerr)
     {
@@ -1447,6 +1567,8 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
       st = core_solve (c, sys, t, h, tr->y0, S, s, tol_hi, yerr);
       if (st)
         return st;
+      if (n - 1 == m)
+        rec_nodes (tr, c);
       /* yerr holds the companion's value: advance with it (local
          extrapolation) and return the estimate of the low-order error */
       for (int k = 0; k < d; k++)
@@ -1489,6 +1611,15 @@ spvi_accept (void *state)
     }
   else
     s->nhist = 0;
+  /* f at the end of the last step, if the dense output evaluated it, is
+     f at the start of this one */
+  spvi_rec *cu = s->cur, *tw = s->trial;
+  if (s->have_cur && cu->have_fe1 && cu->tend == tw->t
+      && memcmp (cu->y1, tw->y0, 2 * (size_t) s->d * sizeof (double)) == 0)
+    {
+      memcpy (tw->fe0, cu->fe1, 2 * (size_t) s->d * sizeof (double));
+      tw->have_fe0 = 1;
+    }
   spvi_rec *tmp = s->cur;
   s->cur = s->trial;
   s->trial = tmp;
@@ -1499,10 +1630,9 @@ spvi_accept (void *state)
 static int
 spvi_dense (void *state, sym_system *sys, double t, double *y)
 {
-  (void) sys;
   spvi_state *s = state;
   const int d = s->d;
-  const spvi_rec *r = s->cur;
+  spvi_rec *r = s->cur;
   if (! s->have_cur)
     return SYM_EBADINPUT;
   if (t == r->t)
@@ -1516,6 +1646,30 @@ spvi_dense (void *state, sym_system *sys, double t, double *y)
       return SYM_SUCCESS;
     }
   double z = 2.0 * (t - r->t) / r->h - 1.0;
+  if (s->n - 1 == s->m && r->M > 0)
+    {
+      int st = rec_ends (r, sys, d);
+      if (st < 0)
+        return st;        /* a fatal callback status ends the run */
+      if (st == SYM_SUCCESS)
+        {
+          if (! r->have_emis)
+            {
+              rec_integral (s, r, 1.0, r->emis);
+              for (int k = 0; k < 2 * d; k++)
+                r->emis[k] = r->y1[k] - r->y0[k] - r->emis[k];
+              r->have_emis = 1;
+            }
+          rec_integral (s, r, z, y);
+          for (int k = 0; k < 2 * d; k++)
+            y[k] += r->y0[k] + 0.5 * (z + 1.0) * r->emis[k];
+          return SYM_SUCCESS;
+        }
+      /* f is NaN or Inf at an end of the step (it may be beyond a
+         singularity that no node reached): this step's dense output is
+         then its solution's own polynomials */
+      r->M = 0;
+    }
   rec_dq (s, r, z, y);
   for (int k = 0; k < d; k++)
     y[k] += r->y0[k] + (r->has_dq ? 0.5 * (z + 1.0) * r->dq[k] : 0.0);
