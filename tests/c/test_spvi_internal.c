@@ -196,6 +196,21 @@ tlin_jac (double t, const double *y, double *df, void *user)
   return 0;
 }
 
+/* max error of c's node Jacobians (d = 1) against tlin_jac at its nodes */
+static double
+tlin_jac_error (const spvi_core *c)
+{
+  double worst = 0.0;
+  for (int j = 0; j < c->m; j++)
+    {
+      double ex[4];
+      tlin_jac (c->tj[j], NULL, ex, NULL);
+      for (int e = 0; e < 4; e++)
+        worst = fmax (worst, fabs (c->A[j * 4 + e] - ex[e]));
+    }
+  return worst;
+}
+
 static void
 test_extrapolate (void)
 {
@@ -229,13 +244,7 @@ test_extrapolate (void)
           ok &= done == (k <= SPVI_JX_STEPS);
           if (! done)
             continue;
-          for (int j = 0; j < m; j++)
-            {
-              double ex[4];
-              tlin_jac (c.tj[j], NULL, ex, NULL);
-              for (int e = 0; e < 4; e++)
-                worst = fmax (worst, fabs (c.A[j * 4 + e] - ex[e]));
-            }
+          worst = fmax (worst, tlin_jac_error (&c));
         }
       /* a reset forgets them */
       c.nae = 0;
@@ -277,13 +286,7 @@ test_borrow (void)
       setup (&hi, &sys, t, h, yk);
       ok &= core_borrow (&hi, &lo, &sys) == 1 && hi.nw.have_matrix
             && hi.nw.lu.factored && sys.cnt.njac == njac;
-      for (int j = 0; j < m + 1; j++)
-        {
-          double ex[4];
-          tlin_jac (hi.tj[j], NULL, ex, NULL);
-          for (int e = 0; e < 4; e++)
-            worst = fmax (worst, fabs (hi.A[j * 4 + e] - ex[e]));
-        }
+      worst = fmax (worst, tlin_jac_error (&hi));
       /* not from another step, nor at another h */
       sym_newton_invalidate (&hi.nw);
       setup (&hi, &sys, t + h, h, yk);
