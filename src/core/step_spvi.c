@@ -89,10 +89,10 @@
    there: for the pairs n - 1 = m (and their companions, pairs too, with
    the same Newton machinery) each stops at a small fraction of the
    smallest error the tolerances allow (see spvi_step).  Fixed steps (no
-   estimate) are
-   the (n, m) method alone.  The q polynomial of such a step gets the
-   linear correction (z+1)/2 (q_companion - q_low)(1), so the dense output
-   stays continuous and ends on the step's value.
+   estimate) are the (n, m) method alone.  Where the dense output falls
+   back on the solution's polynomials (below), the q polynomial of an
+   adaptive step gets the linear correction (z+1)/2 (q_companion -
+   q_low)(1), so that it stays continuous and ends on the step's value.
 
    Dense output (the pairs n - 1 = m): y_k plus the integral of the
    polynomial through dy/dz at -1, at the nodes of the solve the run
