@@ -49,13 +49,25 @@
    for a time-independent T this changes nothing, for T(t, p) it keeps the
    step symmetric.
 
-   Error estimate (yerr):
-     err = y_{k+1} - y_k - (h/2) (f(t_k, y_k) + f(t_{k+1}, y_{k+1})),
-   the difference to the trapezoidal rule through the two step points.  Both
-   are of order 2 with different O(h^3) local errors, so err = O(h^3)
-   (err_order 2).  f(t_{k+1}, y_{k+1}) of an accepted step is the next
-   step's f(t_k, y_k) (FSAL): the estimate costs one call a step (the
-   separable step then costs three).
+   Error estimate (yerr), of the local error y_{k+1} - y(t_{k+1}):
+     err = y_{k+1} - y_k - (h/2) (f(t_k, y_k) + f(t_{k+1}, y_{k+1}))
+           + (h^3/12) y'''.
+   The first part is the difference to the trapezoidal rule through the two
+   step points, the local error of Stoermer-Verlet minus that of the
+   trapezoidal rule; the second is the trapezoidal rule's own local error
+   (h^3/12) y''' + O(h^4).  Both are needed: for separable H the p-update
+   of Stoermer-Verlet is the trapezoidal rule (p_{k+1} - p_k = (h/2)
+   (f_p(q_k) + f_p(q_{k+1}))), so the first part vanishes in p, and the
+   local error of p is all in the second.  err = local error + O(h^4)
+   (err_order 2), componentwise.  y''' = f'' is the second divided
+   difference of f through the last accepted step's start, t_k and t_{k+1}
+   when the last accepted step ends where this one starts, else (a fresh
+   start) the second difference through t_k, t_k + h/2 and t_{k+1}, with
+   f at the cubic Hermite midpoint (y_k + y_{k+1})/2 + (h/8) (f_k - f_{k+1})
+   (one more call: y_m is O(h^3) accurate, f'' O(h)).  f(t_{k+1}, y_{k+1})
+   of an accepted step is the next step's f(t_k, y_k) (FSAL): the estimate
+   costs one call a step (the separable step then costs three), one more at
+   a fresh start.
 
    Dense output on the last accepted step: the cubic Hermite interpolant
    through (t_k, y_k, f_k) and (t_{k+1}, y_{k+1}, f_{k+1}) when both f are
@@ -80,6 +92,7 @@ typedef struct {
   double *block;         /* the one allocation holding the arrays */
   double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
   double *fqa;           /* d: f_q(t_k, q_k, p_{k+1/2}) */
+  double *ym;            /* n: the estimate's midpoint at a fresh start */
   /* the step being solved (for the Newton callbacks) */
   sym_system *sys;
   double tk, hk;
@@ -138,9 +151,9 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
       s->separable = opts->separable != 0;
       s->want_f = opts->want_error || opts->want_dense;
     }
-  /* records (aux: 2d), f cache, and x, scale, rv, fqa: 4d */
+  /* records (aux: 2d), f cache, and x, scale, rv, fqa: 4d, ym: n */
   size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d)
-               + 4 * (size_t) d;
+               + 4 * (size_t) d + (size_t) n;
   s->block = sym_calloc (len, sizeof (double));
   if (! s->block || sym_kept_init (&s->kp, d, opts)
       || sym_kept_init (&s->kq, d, opts))
@@ -157,7 +170,8 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   s->x = w; w += d;
   s->scale = w; w += d;
   s->rv = w; w += d;
-  s->fqa = w;
+  s->fqa = w; w += d;
+  s->ym = w;
   *status = SYM_SUCCESS;
   return s;
 }
@@ -173,6 +187,36 @@ sv_free (void *state)
   sym_newton_free (&s->kp.nw);
   sym_free (s->block);
   sym_free (s);
+}
+
+/* yerr += (h^3/12) y''', the trapezoidal rule's local error (see the top):
+   f'' from the last accepted step's start when it ends where the trial
+   starts (cont), else from f at the cubic Hermite midpoint (one call) */
+static int
+sv_trap_error (sv_state *s, sym_system *sys, int cont, double *yerr)
+{
+  const sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
+  const int n = s->n;
+  const double h = tr->h;
+  if (cont && cu->have_f0 && cu->h * h > 0.0)
+    {
+      const double hp = cu->h, c = h * h * h / (6.0 * (h + hp));
+      for (int i = 0; i < n; i++)
+        yerr[i] += c * ((tr->f1[i] - tr->f0[i]) / h
+                        - (tr->f0[i] - cu->f0[i]) / hp);
+      return SYM_SUCCESS;
+    }
+  double *ym = s->ym;
+  for (int i = 0; i < n; i++)
+    ym[i] = 0.5 * (tr->y0[i] + tr->y1[i])
+      + 0.125 * h * (tr->f0[i] - tr->f1[i]);
+  int st = sym_fcache_f (&s->o.fc, sys, tr->t + 0.5 * h, ym, ym + s->d);
+  if (st)
+    return st;
+  const double *fm = s->o.fc.fw;
+  for (int i = 0; i < n; i++)
+    yerr[i] += (h / 3.0) * (tr->f0[i] - 2.0 * fm[i] + tr->f1[i]);
+  return SYM_SUCCESS;
 }
 
 static int
@@ -247,7 +291,11 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       fpe[i] = s->o.fc.fw[d + i];
       p1[i] = ph[i] + hh * s->o.fc.fw[d + i];
     }
-  return sym_recs_finish (&s->o.r, sys, s->want_f, yerr, ynext);
+  if ((st = sym_recs_finish (&s->o.r, sys, s->want_f, yerr, ynext)))
+    return st;
+  if (yerr && (st = sv_trap_error (s, sys, cont, yerr)))
+    s->o.r.trial_ok = 0;
+  return st;
 }
 
 static int
