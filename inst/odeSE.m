@@ -72,7 +72,12 @@
 ## one that follows the change of the error over the last two accepted
 ## steps (predictive control), so that where the error grows along the
 ## solution steps do not alternate between failed and accepted (the same
-## in all three solvers).
+## in all three solvers).  No step is shorter than 16 ulps of t (below
+## that the round-off of t swamps the step): a smaller step asked for by
+## the controller or by the default MaxStep is raised to it, so that spans
+## only a few ulps wide are integrated too; a step that fails at that size,
+## or a MaxStep set below it, ends the run with the warning
+## @qcode{"symplectic:step-size"}.
 ## @item Separable
 ## @qcode{"on"} for H = T(p) + V(q) with no forcing that depends on p: the
 ## step is explicit, two evaluations of @var{fcn} per step and no Newton.

@@ -588,6 +588,28 @@
 %!   assert (y(:, 1), cos (t), 0.06);
 %! endfor
 
+%!test
+%! ## spans a few ulps of t wide reach tf as in ode45: steps below 16 ulps
+%! ## of t (here all of them, MaxStep being span/10) are raised to that; a
+%! ## MaxStep set below it warns at once
+%! for i = 1:3
+%!   for ts = {[1 1+1e-14], [1e6 1e6+1e-8], [1 1+2*eps], [-2 -2-1e-13]}
+%!     tspan = ts{1};
+%!     lastwarn ("");
+%!     [t, y] = solvers{i} (@contract_osc, tspan, [cos(tspan(1)); -sin(tspan(1))]);
+%!     assert (lastwarn (), "");
+%!     assert (t([1 end]).', tspan);
+%!     assert (y(end, :), [cos(tspan(2)), -sin(tspan(2))], 1e-14);
+%!   endfor
+%!   name = func2str (solvers{i});
+%!   lastwarn ("");
+%!   evalc ("[t, y] = solvers{i} (@contract_osc, [1 2], [1 0], odeset ('MaxStep', 1e-20));");
+%!   [msg, id] = lastwarn ();
+%!   assert (id, "symplectic:step-size");
+%!   assert (regexp (msg, ['^' name ': the step size became too small at t = 1;']));
+%!   assert (t, 1);
+%! endfor
+
 ## ------------------------------------------------------------ help, demos
 %!test
 %! ## the help texts render without texinfo errors and say the key things

@@ -228,6 +228,14 @@ output_step (run_t *r, double t, double h, double tnew, const double *ynew,
   return SYM_SUCCESS;
 }
 
+/* The least step size at t: 16 ulps of t (at least the least normal
+   number), so that t + h moves by more than the round-off of t. */
+static double
+hmin_at (double t)
+{
+  return fmax (16 * DBL_EPSILON * fabs (t), DBL_MIN);
+}
+
 /* Map a recoverable cause that can no longer be cured to a fatal status. */
 static int
 fatal_from (int cause)
@@ -347,8 +355,8 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
         }
     }
 
-  double hmax = o->hmax > 0 && isfinite (o->hmax) ? o->hmax
-                : 0.1 * fabs (o->tf - o->t0);
+  const int user_hmax = o->hmax > 0 && isfinite (o->hmax);
+  double hmax = user_hmax ? o->hmax : 0.1 * fabs (o->tf - o->t0);
   double h = 0;
   int q = type->err_order ? type->err_order (r.state) : type->order;
   if (! fixed)
@@ -401,20 +409,28 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           if (r.dir * (t - tend) >= 0)
             break;
           double rem = fabs (tend - t);
+          /* the least step: below it the round-off of t itself swamps the
+             step.  A smaller h from the default MaxStep (span/10), the
+             initial step or the controller is raised to it, and only a
+             step that fails there ends the run (below); a MaxStep the user
+             set below it ends the run here. */
+          const double hmin = hmin_at (t);
+          h = fmax (h, user_hmax ? fmin (hmin, hmax) : hmin);
           if (h >= rem || rem - h <= 1e-10 * rem)
             {
               h = rem;
               last = 1;
             }
-          /* too small to move t: round-off of t itself, not of tf */
-          if ((h < 16 * DBL_EPSILON * fabs (t) || t + r.dir * h == t)
-              && ! last)
+          if (h < hmin && ! last)
             {
               result = SYM_ESTEPSIZE;
               goto done;
             }
-          hs = r.dir * h;
-          tnew = last ? tend : t + hs;
+          /* the step is the representable increment of t, as with fixed
+             steps: where h is a few ulps of t, t + h rounds by up to half
+             an ulp, which the state would otherwise not follow */
+          tnew = last ? tend : t + r.dir * h;
+          hs = tnew - t;
         }
       if (o->max_steps > 0 && sys->cnt.nsteps >= o->max_steps)
         {
@@ -443,13 +459,14 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           double fac = st > 0 ? 0.5 : sym_step_factor (err, q, 0.2, 1.0);
           if (st == 0 && last_rejected)
             fac = fmin (fac, 0.5);
-          h *= fac;
           last_rejected = 1;
-          if (h < 16 * DBL_EPSILON * fabs (t) || t + r.dir * h == t)
+          /* failed at the least step: nothing smaller can be tried */
+          if (h <= hmin_at (t))
             {
               result = st > 0 ? fatal_from (st) : SYM_ESTEPSIZE;
               goto done;
             }
+          h *= fac;
           continue;
         }
 

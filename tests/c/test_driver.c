@@ -499,6 +499,34 @@ main (void)
   CHECK (st == SYM_STOP_OUTPUT && S.nrows == 5, "stop: %s rows %d",
          sym_status_name (st), S.nrows);
 
+  /* spans of a few ulps of t: steps below the least step (16 ulps of t)
+     that the default MaxStep (span/10) asks for are raised to it, and the
+     run reaches tf; a MaxStep set below it ends the run at once */
+  {
+    const double spans[][2] = { { 1, 1 + 1e-14 }, { 1e6, 1e6 + 1e-8 },
+                                { 1, 1 + 2 * DBL_EPSILON },
+                                { -2, -2 - 1e-13 } };
+    for (size_t i = 0; i < sizeof spans / sizeof spans[0]; i++)
+      {
+        setup (&sys, &hu, &o, &atol);
+        o.t0 = spans[i][0];
+        o.tf = spans[i][1];
+        st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+        CHECK (st == SYM_DONE && tr == o.tf && S.t[S.nrows - 1] == o.tf
+               && S.nrows >= 2 && S.nrows <= 12,
+               "span [%.17g, %.17g]: %s, %d rows", o.t0, o.tf,
+               sym_status_name (st), S.nrows);
+      }
+    setup (&sys, &hu, &o, &atol);
+    o.t0 = 1;
+    o.tf = 2;
+    o.hmax = 1e-20;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_ESTEPSIZE && S.nrows == 1 && tr == 1,
+           "MaxStep below the least step: %s, %d rows",
+           sym_status_name (st), S.nrows);
+  }
+
   /* bad input */
   setup (&sys, &hu, &o, &atol);
   o.tf = 0;
