@@ -89,7 +89,9 @@
 ## of (2d)^2 elements, as in @code{[dy, ddy] = fcn (t, y)}); finite
 ## differences of @var{fcn} (2d extra evaluations).  With a forcing term
 ## the Hessian misses dF/dy and Newton works as a quasi-Newton method.
-## @code{stats.jacobian_source} says which was used.
+## @code{stats.jacobian_source} says which was used.  Sparse matrices
+## (here, in the other options, in @var{tspan}, @var{y0} and in what
+## @var{fcn} returns) are taken as full.
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).
 ## @item Events, OutputFcn, OutputSel, Refine, Stats

@@ -142,9 +142,12 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 char", f, "ab", y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 cell", f, {0, 1}, y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 2x2 double", f, [0 1; 2 3], y0);
-%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 sparse double", f, sparse ([0 1]), y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 complex double", f, sparse ([0 1i]), y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 logical", f, [false true], y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must span a finite interval", f, [-realmax realmax], y0);
+
+## (sparse arguments, options and returned values are taken as full: a
+## sparse value with another fault gets that fault's message)
 
 ## ------------------------------------------------------------ Y0
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector \\[q0; p0\\], got 0x0 double", f, [0 1], []);
@@ -156,7 +159,7 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x2 char", f, [0 1], "ab");
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x2 cell", f, [0 1], {1, 0});
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x1 struct", f, [0 1], struct ("q", 1));
-%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x2 sparse double", f, [0 1], sparse ([1 0]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be real, got a complex value", f, [0 1], sparse ([1i 0]));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 2x2 double", f, [0 1], eye (2));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be finite, element 1 is nan", f, [0 1], [NaN 0]);
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be finite, element 2 is inf", f, [0 1], [0 Inf]);
@@ -168,7 +171,7 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 1x2 char at t = 0", @(t, y) "ab", [0 1], y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 1x2 cell at t = 0", @(t, y) {1, 2}, [0 1], y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 1x1 struct at t = 0", @(t, y) struct (), [0 1], y0);
-%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 2x1 sparse double at t = 0", @(t, y) sparse ([1; 2]), [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return a vector of 2 real elements, got 3x1 double at t = 0", @(t, y) sparse ([1; 2; 3]), [0 1], y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN returned a complex value at t = 0; expected a vector of 2 real elements", @(t, y) [1i; 2], [0 1], y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN returned a complex value at t = 2; expected", @(t, y) [1i; 2], [2 3], y0);
 %!test check_bad (all3, "symplectic:nonfinite", "FCN returned nan \\(element 1\\) at t = 0, the initial point", @(t, y) [NaN; 2], [0 1], y0);
@@ -196,8 +199,8 @@
 %!test check_bad (all3, "mytest:output", "^my output failure$", f, [0 1], y0, struct ("OutputFcn", @(t, y, flag) error ("mytest:output", "my output failure")));
 
 ## ------------------------------------------------------------ Jacobian and Hessian
-%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be a function handle or a full real 2x2 matrix \\(df/dy\\), got 3x3 double", f, [0 1], y0, struct ("Jacobian", ones (3)));
-%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 2x2 sparse double", f, [0 1], y0, struct ("Jacobian", speye (2)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be a function handle or a real 2x2 matrix \\(df/dy\\), got 3x3 double", f, [0 1], y0, struct ("Jacobian", ones (3)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 3x3 double", f, [0 1], y0, struct ("Jacobian", speye (3)));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 2x2 complex double", f, [0 1], y0, struct ("Jacobian", 1i * eye (2)));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 1x22 char", f, [0 1], y0, struct ("Jacobian", "no_such_function_xyz_2"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Jacobian matrix must be finite, element 4 is nan", f, [0 1], y0, struct ("Jacobian", [0 1; -1 NaN]));

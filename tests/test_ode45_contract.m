@@ -610,6 +610,49 @@
 %!   assert (t, 1);
 %! endfor
 
+%!test
+%! ## sparse arguments, options and values returned by the user's functions
+%! ## are taken as full (as ode45 takes a sparse Jacobian): the same rows
+%! osc = @(t, y) [y(2); -y(1)];
+%! ev = @(t, y) deal (y(1), 0, 0);
+%! for i = 1:3
+%!   o = symplecticset ("TimeStepSize", 0.1, "Events", ev);
+%!   [t0, y0, te0] = solvers{i} (osc, [0 3], [1; 0], o);
+%!   assert (te0, pi/2, 0.1);   # odeSE: order 1
+%!   sosc = @(t, y) sparse (osc (t, y));
+%!   sev = @(t, y) deal (sparse (y(1)), 0, 0);
+%!   runs = {{sosc, [0 3], [1; 0], o}, ...
+%!           {osc, sparse([0 3]), sparse([1; 0]), o}, ...
+%!           {osc, [0 3], [1; 0], symplecticset(o, "Events", sev)}, ...
+%!           {osc, [0 3], [1; 0], symplecticset(o, "TimeStepSize", sparse(0.1))}};
+%!   for k = 1:numel (runs)
+%!     [t, y, te] = solvers{i} (runs{k}{:});
+%!     assert ([t y], [t0 y0]);
+%!     assert (te, te0);
+%!   endfor
+%!   ## Newton's matrix from a sparse Jacobian, Jacobian function or Hessian
+%!   o = symplecticset ("TimeStepSize", 0.1);
+%!   jf = @(t, y) [0 1; -1 0];
+%!   hf = @(t, y) eye (2);
+%!   for src = {{"Jacobian", [0 1; -1 0]}, {"Jacobian", jf}, ...
+%!              {"HamiltonianHessFcn", hf}}
+%!     s0 = solvers{i} (osc, [0 3], [1; 0], symplecticset (o, src{1}{:}));
+%!     v = src{1}{2};
+%!     if (is_function_handle (v))
+%!       vs = @(t, y) sparse (v (t, y));
+%!     else
+%!       vs = sparse (v);
+%!     endif
+%!     s1 = solvers{i} (osc, [0 3], [1; 0], symplecticset (o, src{1}{1}, vs));
+%!     assert (s1.y, s0.y);
+%!     assert (s1.stats.jacobian_source, s0.stats.jacobian_source);
+%!   endfor
+%!   ## adaptive, with a sparse AbsTol
+%!   [t1, y1] = solvers{i} (osc, [0 3], [1; 0], odeset ("AbsTol", sparse ([1e-6 1e-6])));
+%!   [t2, y2] = solvers{i} (osc, [0 3], [1; 0], odeset ("AbsTol", [1e-6 1e-6]));
+%!   assert ([t1 y1], [t2 y2]);
+%! endfor
+
 ## ------------------------------------------------------------ help, demos
 %!test
 %! ## the help texts render without texinfo errors and say the key things

@@ -31,7 +31,7 @@ field (const mxArray *s, const char *name)
       {
         const mxArray *v = mxGetFieldByNumber (s, 0, i);
         if (v && ! mxIsEmpty (v))
-          return v;
+          return symmex_full (v);
       }
   return NULL;
 }
@@ -42,7 +42,7 @@ is_real_numeric (const mxArray *v)
   return (mxIsDouble (v) || mxIsSingle (v) || mxIsInt8 (v) || mxIsInt16 (v)
           || mxIsInt32 (v) || mxIsInt64 (v) || mxIsUint8 (v)
           || mxIsUint16 (v) || mxIsUint32 (v) || mxIsUint64 (v))
-         && ! mxIsComplex (v) && ! mxIsSparse (v);
+         && ! mxIsComplex (v);
 }
 
 /* "1x2 double", "2x2 sparse double", "1x1 complex double", "1x3 char": what
@@ -124,6 +124,16 @@ on_off (const char *solver, const mxArray *v, const char *name)
   mexErrMsgIdAndTxt (BADARG, "%s: %s must be \"on\" or \"off\", got %s",
                      solver, name, describe (v, buf, sizeof buf));
   return 0;
+}
+
+mxArray *
+symmex_full (const mxArray *a)
+{
+  if (! a || ! mxIsSparse (a))
+    return (mxArray *) a;
+  mxArray *in[1] = { (mxArray *) a }, *out[1] = { NULL };
+  mexCallMATLAB (1, out, 1, in, "full");
+  return out[0];
 }
 
 int
@@ -257,7 +267,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
         }
       else
         mexErrMsgIdAndTxt (BADARG, "%s: Jacobian must be a function handle "
-                           "or a full real %dx%d matrix (df/dy), got %s",
+                           "or a real %dx%d matrix (df/dy), got %s",
                            solver, n, n, describe (v, buf, sizeof buf));
     }
   o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");

@@ -74,8 +74,14 @@ checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
 {
   mxArray *a = *pa;
   char buf[64];
+  if (a && mxIsSparse (a))
+    {
+      *pa = symmex_full (a);
+      mxDestroyArray (a);
+      a = *pa;
+    }
   if (! a || ! (mxIsNumeric (a) || mxIsLogical (a)) || mxIsComplex (a)
-      || mxIsSparse (a) || mxGetNumberOfElements (a) != k)
+      || mxGetNumberOfElements (a) != k)
     {
       /* what was expected, formatted only here: callbacks stay cheap */
       char expect[128];
@@ -501,7 +507,7 @@ to_double (const mxArray *a)
 static int
 is_plain_numeric (const mxArray *a)
 {
-  return mxIsNumeric (a) && ! mxIsSparse (a) && ! mxIsComplex (a);
+  return mxIsNumeric (a) && ! mxIsComplex (a);
 }
 
 /* ------------------------------------------------------------ outputs */
@@ -583,7 +589,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                        shape (fcn, buf, sizeof buf));
 
   /* TSPAN */
-  const mxArray *ts = prhs[1];
+  const mxArray *ts = symmex_full (prhs[1]);
   if (! is_plain_numeric (ts) || mxGetNumberOfElements (ts) < 2
       || (mxGetM (ts) != 1 && mxGetN (ts) != 1))
     mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be a real vector [T0, TF] or "
@@ -608,7 +614,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                        tspan[ntspan - 1], tspan[0]);
 
   /* Y0 */
-  const mxArray *y0a = prhs[2];
+  const mxArray *y0a = symmex_full (prhs[2]);
   if (! is_plain_numeric (y0a) || mxIsEmpty (y0a)
       || (mxGetM (y0a) != 1 && mxGetN (y0a) != 1))
     {

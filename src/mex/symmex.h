@@ -54,6 +54,11 @@ void symmex_parse_options (const char *solver, const mxArray *opts, int n,
 /* Is a a function handle, or the name of a function? */
 int symmex_is_function (const mxArray *a);
 
+/* a itself, or when a is sparse its full copy (freed when the MEX function
+   returns, or by the caller): sparse arguments, options and values returned
+   by the user's functions are taken as their full equivalents. */
+mxArray *symmex_full (const mxArray *a);
+
 /* Octave's mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt put "NAME: " (the
    running MEX function's name) in front of every message, and ours already
    begin with the solver's name ("odeSPVI: Y0 must ..."): the user would see
