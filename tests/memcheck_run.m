@@ -58,6 +58,17 @@ function status = memcheck_run ()
     [t, y] = s (kep, [0 1], y0k, struct ("Separable", "on", "TimeStepSize", 0.05));
     [t, y] = s (@(t, y) [y(2,:); -y(1,:)], [0 1], [1 0], struct ("Vectorized", "on"));
     nbad += check (abs (y(end,1) - cos (1)) < 5e-2, name, "vectorized");
+    ## sparse arguments, options and returned values (taken as full)
+    [t, y] = s (@(t, y) sparse ([y(2); -y(1)]), sparse ([0 1]), sparse ([1 0]), ...
+                struct ("HamiltonianHessFcn", @(t, y) speye (2), "AbsTol", sparse ([1e-6 1e-6])));
+    nbad += check (abs (y(end,1) - cos (1)) < 5e-2, name, "sparse");
+    [t, y] = s (osc, [0 1], [1 0], struct ("Jacobian", sparse ([0 1; -1 0]), "TimeStepSize", 0.1));
+    nbad += check (numel (t) == 11, name, "sparse Jacobian");
+    ## a span of a few ulps of t, and a MaxStep below the least step
+    [t, y] = s (osc, [1 1+1e-14], [1 0]);
+    nbad += check (t(end) == 1+1e-14, name, "span of a few ulps");
+    evalc ("[t, y] = s (osc, [1 2], [1 0], struct ('MaxStep', 1e-20));");
+    nbad += check (t(end) == 1, name, "MaxStep below the least step");
     ## events, OutputFcn, OutputSel, Stats
     ev = @(t, y) deal ([y(1); y(2)], [0; 1], [0; -1]);
     [t, y, te, ye, ie] = s (osc, [0 8], [1 0], struct ("Events", ev));
