@@ -46,14 +46,14 @@
 ## In adaptive mode the local error estimate is the difference to the
 ## trapezoidal rule built from @var{fcn} at both ends of the step plus the
 ## trapezoidal rule's own local error,
-## y(k+1) - y(k) - h/2 (f(k) + f(k+1)) + (h^3/12) d^3y/dt^3, with the third derivative from the
-## values of @var{fcn} at the last three step points (at a fresh start: at
-## the step's ends and its midpoint, one more evaluation).  It matches the
-## local error in every component to leading order; the first part alone
-## would be zero in p for separable H, where Verlet's p-update is the
-## trapezoidal rule.  It costs one evaluation of @var{fcn} per step.  Dense output
-## (for output times, @code{Refine} and events) is the cubic Hermite
-## interpolant through the step points.
+## y(k+1) - y(k) - h/2 (f(k) + f(k+1)) + (h^3/12) d^3y/dt^3, with the
+## third derivative from the values of @var{fcn} at the last three step
+## points (at a fresh start: at the step's ends and its midpoint, one more
+## evaluation).  It matches the local error in every component to leading
+## order; the first part alone would be zero in p for separable H, where
+## Verlet's p-update is the trapezoidal rule.  It costs one evaluation of
+## @var{fcn} per step.  Dense output (for output times, @code{Refine} and
+## events) is the cubic Hermite interpolant through the step points.
 ##
 ## Example: Kepler's problem over 100 orbits with a fixed step; the energy
 ## error stays bounded and the angular momentum is conserved.
