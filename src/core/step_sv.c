@@ -207,9 +207,7 @@ sv_trap_error (sv_state *s, sym_system *sys, int cont, double *yerr)
       return SYM_SUCCESS;
     }
   double *ym = s->ym;
-  for (int i = 0; i < n; i++)
-    ym[i] = 0.5 * (tr->y0[i] + tr->y1[i])
-      + 0.125 * h * (tr->f0[i] - tr->f1[i]);
+  sym_rec_hermite (tr, n, 0.5, ym);
   int st = sym_fcache_f (&s->o.fc, sys, tr->t + 0.5 * h, ym, ym + s->d);
   if (st)
     return st;

@@ -162,19 +162,23 @@ sym_recs_dense (const sym_recs *r, double t, double *y)
       memcpy (y, c->y1, (size_t) n * sizeof (double));
       return SYM_SUCCESS;
     }
-  const double th = (t - c->t) / c->h, h = c->h;
+  const double th = (t - c->t) / c->h;
   if (c->have_f0 && c->have_f1)
-    {
-      const double u = 1.0 - th;
-      const double a0 = u * u * (1.0 + 2.0 * th), a1 = th * th * (3.0 - 2.0 * th);
-      const double b0 = h * th * u * u, b1 = -h * th * th * u;
-      for (int i = 0; i < n; i++)
-        y[i] = a0 * c->y0[i] + a1 * c->y1[i] + b0 * c->f0[i] + b1 * c->f1[i];
-    }
+    sym_rec_hermite (c, n, th, y);
   else
     for (int i = 0; i < n; i++)
       y[i] = c->y0[i] + th * (c->y1[i] - c->y0[i]);
   return SYM_SUCCESS;
+}
+
+void
+sym_rec_hermite (const sym_rec *c, int n, double th, double *y)
+{
+  const double h = c->h, u = 1.0 - th;
+  const double a0 = u * u * (1.0 + 2.0 * th), a1 = th * th * (3.0 - 2.0 * th);
+  const double b0 = h * th * u * u, b1 = -h * th * th * u;
+  for (int i = 0; i < n; i++)
+    y[i] = a0 * c->y0[i] + a1 * c->y1[i] + b0 * c->f0[i] + b1 * c->f1[i];
 }
 
 void

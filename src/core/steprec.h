@@ -50,6 +50,8 @@ int sym_recs_finish (sym_recs *r, sym_system *sys, int want_f, double *yerr,
 void sym_recs_accept (sym_recs *r);
 /* cubic Hermite with both f values, else linear; exact at the ends */
 int sym_recs_dense (const sym_recs *r, double t, double *y);
+/* the cubic Hermite interpolant of step c (both f known) at t + th h */
+void sym_rec_hermite (const sym_rec *c, int n, double th, double *y);
 /* forget the last step and every f kept */
 void sym_recs_forget (sym_recs *r);
 
