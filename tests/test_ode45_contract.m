@@ -220,6 +220,22 @@
 %! assert (t(end), te(end));
 %! assert (numel (t), 2);
 
+%!test
+%! ## two event functions that vanish together (q and 2q): both are
+%! ## reported at the stop, whichever of them is terminal
+%! f = @(t, y) [y(2); -y(1)];
+%! for i = 1:3
+%!   for term = {[1; 0], [0; 1], [1; 1]}
+%!     ev = @(t, y) deal ([y(1); 2*y(1)], term{1}, [0; 0]);
+%!     o = symplecticset ("TimeStepSize", 0.1, "Events", ev);
+%!     [t, y, te, ye, ie] = solvers{i} (f, [0 10], [1; 0], o);
+%!     assert (ie, [1; 2]);
+%!     assert (te, [pi/2; pi/2], 0.1^i);
+%!     assert (te(1), te(2), 4 * eps);
+%!     assert (t(end), te(find (term{1}, 1)));
+%!   endfor
+%! endfor
+
 ## ------------------------------------------------------------ OutputFcn
 %!test
 %! ## init (tspan, y0), every returned row with flag "", then done

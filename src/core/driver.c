@@ -120,8 +120,11 @@ locate (run_t *r, int k, double ta, double ga, double tb, double gb,
 }
 
 /* Find the events in the accepted step (t, tnew]; report them in time
-   order up to and including the first terminal one.  *tstop is set to the
-   terminal event's time (or stays NAN). */
+   order up to and including the first terminal one, and those located at
+   its time too (within the few ulps to which locate brackets a zero: two
+   event functions that vanish together are both reported whichever of
+   them is terminal).  *tstop is set to the terminal event's time (or
+   stays NAN). */
 static int
 handle_events (run_t *r, double t, double tnew, double *tstop)
 {
@@ -152,6 +155,10 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
     }
   for (int j = 0; j < nf; j++)
     {
+      if (! isnan (*tstop)
+          && ! (fabs (tfound[j] - *tstop)
+                <= fmax (4 * DBL_EPSILON * fabs (*tstop), DBL_MIN)))
+        break;
       int st = r->type->dense (r->state, r->sys, tfound[j], r->ydense);
       if (st)
         return st;
@@ -161,11 +168,8 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
           if (st < 0)
             return SYM_EOUTPUT;
         }
-      if (r->term[kfound[j]])
-        {
-          *tstop = tfound[j];
-          break;
-        }
+      if (r->term[kfound[j]] && isnan (*tstop))
+        *tstop = tfound[j];
     }
   return SYM_SUCCESS;
 }

@@ -237,6 +237,21 @@ ev_fn (double t, const double *y, double *v, int *term, int *dir, void *u)
   return 0;
 }
 
+/* two event functions with the same zeros, q and 2 q, terminal per
+   flags (an int[2] as user data) */
+static int
+ev_twin (double t, const double *y, double *v, int *term, int *dir, void *u)
+{
+  (void) t;
+  const int *flags = u;
+  v[0] = y[0];
+  v[1] = 2 * y[0];
+  term[0] = flags[0];
+  term[1] = flags[1];
+  dir[0] = dir[1] = 0;
+  return 0;
+}
+
 static void
 setup (sym_system *sys, ho_user *hu, sym_driver_opts *o, const double *atol)
 {
@@ -417,6 +432,31 @@ main (void)
     st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
     CHECK (st == SYM_STOP_EVENT, "status");
     CHECK_CLOSE (S.t[S.nrows - 1], 3 * M_PI / 2, 1e-14, "rising event");
+  }
+
+  /* two events that vanish together: both are reported at the stop,
+     whichever of them is terminal, and no later event */
+  {
+    static const int flags[3][2] = { { 1, 0 }, { 0, 1 }, { 1, 1 } };
+    for (int f = 0; f < 3; f++)
+      {
+        setup (&sys, &hu, &o, &atol);
+        o.h_fixed = 0.3;
+        o.nevents = 2;
+        o.events = ev_twin;
+        o.event_user = (void *) flags[f];
+        st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+        CHECK (st == SYM_STOP_EVENT, "twin events %d: status %s", f,
+               sym_status_name (st));
+        CHECK (S.nev == 2 && S.ie[0] == 0 && S.ie[1] == 1,
+               "twin events %d: %d events, ie %d %d", f, S.nev, S.ie[0],
+               S.ie[1]);
+        CHECK (fabs (S.te[0] - M_PI / 2) < 1e-14
+               && fabs (S.te[1] - M_PI / 2) < 1e-14,
+               "twin events %d: te %.17g %.17g", f, S.te[0], S.te[1]);
+        CHECK_CLOSE (S.t[S.nrows - 1], M_PI / 2, 1e-14,
+                     "twin events: last row");
+      }
   }
 
   /* adaptive: errors shrink with rtol; hmax respected */
