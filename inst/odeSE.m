@@ -44,10 +44,14 @@
 ## returns a row at every step; with more than two (strictly monotonic)
 ## elements, rows exactly at those times, taken from the dense output
 ## without shortening any step.  tf < t0 integrates backwards.  @var{y0} =
-## [q0; p0] is a real vector of even length (row or column).  Extra
-## arguments @var{par1}, @dots{} are passed to @var{fcn} (and to the
-## Jacobian, Hessian, Events and OutputFcn functions) after t and y.
-## @var{t} is a column; @var{y} has one row per time.  With one output,
+## [q0; p0] is a real vector of even length (row or column).  @var{opts}
+## is a struct or [] for the defaults.  Extra arguments @var{par1},
+## @dots{} come after it and are passed to @var{fcn} (and to the
+## Jacobian, Hessian, Events and OutputFcn functions) after t and y;
+## unlike Octave's @code{ode45}, a fourth argument that is not a struct is
+## refused rather than taken as @var{par1} (pass [] before the
+## parameters).  @var{t} is a column; @var{y} has one row per time, in
+## double precision whatever the class of @var{tspan} and @var{y0}.  With one output,
 ## @var{sol} is a struct with the fields of @code{ode45}: @code{x} (row of
 ## times), @code{y} (one column per time), @code{solver}, @code{xe},
 ## @code{ye}, @code{ie} (with Events) and @code{stats}.  With no output the
@@ -97,7 +101,11 @@
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}.  Event times, output times and refined rows come
 ## from the dense output (cubic Hermite interpolation between steps, from
-## @var{fcn} at the step points).  @code{Refine}
+## @var{fcn} at the step points).  An event counts where its function
+## changes sign (in the chosen direction) after t0: a zero at t0 itself is
+## not reported.  Events located at the time of a terminal event (to the
+## few ulps of their location) are reported with it, in the order of the
+## event functions.  @code{Refine}
 ## (default 1: step points only, where the method's properties hold) adds
 ## interpolated rows between steps; as in @code{ode45} it is ignored with
 ## more than two @var{tspan} elements and for the @var{sol} output.

@@ -148,7 +148,8 @@
 ## a fixed step the result of a step is converged to NewtonTol/100; in
 ## adaptive mode see RelTol.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
-## As in @code{ode45}; output times, refined rows and event locations come
+## As in @code{ode45} (arguments, outputs and events as in @code{help
+## odeSE}); output times, refined rows and event locations come
 ## from the method's own dense output: for the pairs Q_DoFs = Nodes + 1
 ## (the default), the integral of the polynomial through y' at the step's
 ## ends and at the nodes of the solve the run advances with (the companion
@@ -159,7 +160,12 @@
 ## Kepler (e = 0.6), one period, 401 output times: at RelTol = AbsTol =
 ## 1e-10 within 2.6e-10 of the exact solution (the step points 5e-11;
 ## @code{ode45} 7.4e-9), and with TimeStepSize = 2*pi/200 within 1.3e-7, as
-## the step points (tests/test_spvi.m).  Other pairs, and a step with
+## the step points (tests/test_spvi.m).  In adaptive runs the error at
+## output times is of the order of the tolerance (their local error is
+## that of the estimate), while the step points, advanced with the
+## companion, are often far more accurate: the pendulum from q = 1,
+## p = 0.5 over [0, 10] at RelTol = 1e-9, AbsTol = 1e-12 is within 1.2e-9
+## at 1001 output times and 6.1e-12 at its 55 step points.  Other pairs, and a step with
 ## NaN or Inf from @var{fcn} at an end, use the solution's own polynomials
 ## (q(z), and the polynomial through p(k), the nodal p_j and p(k+1)),
 ## accurate to O(h^Q_DoFs) (q) and O(h^(Nodes+2)) (p) within a step.
