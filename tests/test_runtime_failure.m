@@ -135,6 +135,12 @@
 %!   [t, y, msg, id] = run_warn (s{1}, osc, [0 100], [1 0], struct ("MaxSteps", 10, "TimeStepSize", 0.5));
 %!   assert (id, "symplectic:max-steps");
 %!   assert (t, (0:0.5:5)', 1e-12);
+%!   ## with output times the run stops between them: the message says
+%!   ## where it stopped and up to which row it returns
+%!   [t, y, msg, id] = run_warn (s{1}, osc, [0 1 2 50 100], [1 0], struct ("MaxSteps", 30, "TimeStepSize", 0.1));
+%!   assert (id, "symplectic:max-steps");
+%!   assert (t, [0; 1; 2]);
+%!   assert (regexp (msg, ['^' name ': MaxSteps reached at t = (3|2\.9999999\d*|3\.0000000\d*); returning the solution up to t = 2$']));
 %! endfor
 
 ## the warnings can be turned off by their identifiers; rows still return

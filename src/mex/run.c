@@ -899,12 +899,12 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
     case SYM_ESTEPSIZE:
       mexWarnMsgIdAndTxt ("symplectic:step-size", "%s: the step size became "
                           "too small at t = %.17g; returning the solution up "
-                          "to there", name, tlast);
+                          "to t = %.17g", name, treached, tlast);
       break;
     case SYM_EMAXSTEPS:
       mexWarnMsgIdAndTxt ("symplectic:max-steps", "%s: MaxSteps reached at "
-                          "t = %.17g; returning the solution up to there",
-                          name, tlast);
+                          "t = %.17g; returning the solution up to "
+                          "t = %.17g", name, treached, tlast);
       break;
     case SYM_ENOMEM:
       mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory", name);
