@@ -165,10 +165,15 @@
 ## that of the estimate), while the step points, advanced with the
 ## companion, are often far more accurate: the pendulum from q = 1,
 ## p = 0.5 over [0, 10] at RelTol = 1e-9, AbsTol = 1e-12 is within 1.2e-9
-## at 1001 output times and 6.1e-12 at its 55 step points.  Other pairs, and a step with
-## NaN or Inf from @var{fcn} at an end, use the solution's own polynomials
-## (q(z), and the polynomial through p(k), the nodal p_j and p(k+1)),
-## accurate to O(h^Q_DoFs) (q) and O(h^(Nodes+2)) (p) within a step.
+## at 1001 output times and 6.1e-12 at its 55 step points.  The other
+## pairs use, below order 8, the cubic Hermite interpolant through the
+## step's ends (@var{fcn} there, as above): error O(h^min(4, order)), as
+## small as the step points' up to order 4 (oscillator, h = 0.025: (3,3)
+## 1.2e-9 between the steps, 8.4e-10 at them).  From order 8, and for a
+## step with NaN or Inf from @var{fcn} at an end, the solution's own
+## polynomials (q(z), and the polynomial through p(k), the nodal p_j and
+## p(k+1)), whose error is O(h^(order/2)): (5,5), h = 0.05: 1.4e-9,
+## against 1.6e-8 for the Hermite interpolant of (4,4).
 ## @code{Refine} defaults to 1 (step points only); as in
 ## @code{ode45} it is ignored with more than two @var{tspan} elements and
 ## for the @var{sol} output.

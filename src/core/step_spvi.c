@@ -105,12 +105,17 @@
    slope 5.0 against 4.0 for (4,3)).  By Gauss orthogonality the integral
    over the step is the quadrature that gave y_{k+1} (m >= 2); the end
    mismatch, round-off then and O(h^3) for (2,1), is spread linearly, so
-   the output ends on the step's value.  Without f at an end (NaN there),
-   and for the other pairs: q from the Legendre series of the last
-   accepted step, p from the polynomial through (-1, p_k), (z_j, P_j),
-   (1, p_{k+1}). */
+   the output ends on the step's value.  The other pairs of order below
+   8: the cubic Hermite interpolant through the step's ends (f there, as
+   above), O(h^min(4, order)); their solution's polynomials are only
+   O(h^(order/2)) (p for n - 1 < m, q for n - 1 > m; measured in
+   tests/c/test_spvi.c and tests/test_spvi.m).  Without f at an end (NaN
+   there), and for the other pairs of order 8 and more: q from the
+   Legendre series of the last accepted step, p from the polynomial
+   through (-1, p_k), (z_j, P_j), (1, p_{k+1}). */
 #include "sym.h"
 #include "control.h"
+#include "steprec.h"
 
 #include <float.h>
 #include <math.h>
@@ -211,10 +216,14 @@ typedef struct {
   double *fe0, *fe1;   /* 2d each */
   double *emis;        /* 2d: y1 - u(1), the end mismatch (see spvi_dense) */
   int M, have_fe0, have_fe1, have_emis;
+  int ends_bad;        /* f at an end is NaN or Inf: the polynomials */
 } spvi_rec;
 
 typedef struct {
   int d, n, m, order;
+  int hermite;         /* dense output of the pairs n - 1 != m of order
+                          below 8: cubic Hermite through the step's
+                          ends (see spvi_dense) */
   double tol;
   int maxit;
   int newmat;          /* opts->newton_matrix */
@@ -1180,6 +1189,7 @@ spvi_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   s->n = n;
   s->m = m;
   s->order = spvi_order (n, m);
+  s->hermite = n - 1 != m && s->order < 8;
   s->tol = opts && opts->newton_tol > 0 ? opts->newton_tol : 1e-14;
   s->maxit = opts && opts->max_newton > 0 ? opts->max_newton : 10;
   s->newmat = opts ? opts->newton_matrix : SYM_MATRIX_AUTO;
@@ -1308,7 +1318,6 @@ rec_nodes (spvi_rec *r, const spvi_core *c)
         }
     }
   r->M = m;
-  r->have_fe0 = r->have_fe1 = r->have_emis = 0;
 }
 
 /* dy/dz at the ends of r, from f there (one call each when not known) */
@@ -1330,7 +1339,7 @@ rec_ends (spvi_rec *r, sym_system *sys, int d)
         return st;
       r->have_fe1 = 1;
     }
-  for (size_t i = 0; i < nn; i++)
+  for (size_t i = 0; r->M > 0 && i < nn; i++)
     {
       r->D[i] = hh * r->fe0[i];
       r->D[(size_t) (r->M + 1) * nn + i] = hh * r->fe1[i];
@@ -1587,6 +1596,8 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
   tr->h = h;
   tr->tend = t + h;
   tr->has_dq = 0;
+  tr->M = 0;
+  tr->have_fe0 = tr->have_fe1 = tr->have_emis = tr->ends_bad = 0;
   if (n - 1 == m)
     rec_nodes (tr, &s->lo);
 
@@ -1682,11 +1693,18 @@ spvi_dense (void *state, sym_system *sys, double t, double *y)
       return SYM_SUCCESS;
     }
   double z = 2.0 * (t - r->t) / r->h - 1.0;
-  if (s->n - 1 == s->m && r->M > 0)
+  if (! r->ends_bad && (r->M > 0 || s->hermite))
     {
       int st = rec_ends (r, sys, d);
       if (st < 0)
         return st;        /* a fatal callback status ends the run */
+      if (st == SYM_SUCCESS && r->M == 0)
+        {
+          /* the other pairs: cubic Hermite through the step's ends */
+          sym_hermite (2 * d, r->h, 0.5 * (z + 1.0), r->y0, r->y1, r->fe0,
+                       r->fe1, y);
+          return SYM_SUCCESS;
+        }
       if (st == SYM_SUCCESS)
         {
           if (! r->have_emis)
@@ -1704,7 +1722,7 @@ spvi_dense (void *state, sym_system *sys, double t, double *y)
       /* f is NaN or Inf at an end of the step (it may be beyond a
          singularity that no node reached): this step's dense output is
          then its solution's own polynomials */
-      r->M = 0;
+      r->ends_bad = 1;
     }
   rec_dq (s, r, z, y);
   for (int k = 0; k < d; k++)

@@ -172,13 +172,20 @@ sym_recs_dense (const sym_recs *r, double t, double *y)
 }
 
 void
-sym_rec_hermite (const sym_rec *c, int n, double th, double *y)
+sym_hermite (int n, double h, double th, const double *y0, const double *y1,
+             const double *f0, const double *f1, double *y)
 {
-  const double h = c->h, u = 1.0 - th;
+  const double u = 1.0 - th;
   const double a0 = u * u * (1.0 + 2.0 * th), a1 = th * th * (3.0 - 2.0 * th);
   const double b0 = h * th * u * u, b1 = -h * th * th * u;
   for (int i = 0; i < n; i++)
-    y[i] = a0 * c->y0[i] + a1 * c->y1[i] + b0 * c->f0[i] + b1 * c->f1[i];
+    y[i] = a0 * y0[i] + a1 * y1[i] + b0 * f0[i] + b1 * f1[i];
+}
+
+void
+sym_rec_hermite (const sym_rec *c, int n, double th, double *y)
+{
+  sym_hermite (n, c->h, th, c->y0, c->y1, c->f0, c->f1, y);
 }
 
 void

@@ -1,8 +1,9 @@
 /* steprec.h -- internal to the core: what the one-step methods of
-   step_se.c and step_sv.c share.  A pair of step records (the last
-   accepted step and the one being tried, swapped on accept) with the f
-   values at their ends, their dense output, a cache of the last f (and Df)
-   evaluation, and the checked Newton solve with its kept matrix. */
+   step_se.c and step_sv.c share (step_spvi.c takes the cubic Hermite
+   interpolant).  A pair of step records (the last accepted step and the
+   one being tried, swapped on accept) with the f values at their ends,
+   their dense output, a cache of the last f (and Df) evaluation, and the
+   checked Newton solve with its kept matrix. */
 #ifndef SYM_STEPREC_H
 #define SYM_STEPREC_H
 
@@ -50,7 +51,11 @@ int sym_recs_finish (sym_recs *r, sym_system *sys, int want_f, double *yerr,
 void sym_recs_accept (sym_recs *r);
 /* cubic Hermite with both f values, else linear; exact at the ends */
 int sym_recs_dense (const sym_recs *r, double t, double *y);
-/* the cubic Hermite interpolant of step c (both f known) at t + th h */
+/* the cubic Hermite interpolant through (y0, f0) at t and (y1, f1) at
+   t + h, at t + th h (n components); of step c (both f known) */
+void sym_hermite (int n, double h, double th, const double *y0,
+                  const double *y1, const double *f0, const double *f1,
+                  double *y);
 void sym_rec_hermite (const sym_rec *c, int n, double th, double *y);
 /* forget the last step and every f kept */
 void sym_recs_forget (sym_recs *r);

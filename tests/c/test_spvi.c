@@ -807,6 +807,52 @@ test_dense (void)
   CHECK (sl >= 4.7 && worst[0] < 1e-7, "dense: %.3g %.3g slope %.2f",
          worst[0], worst[1], sl);
 
+  /* the other pairs below order 8 ((3,3), order 4, here): the cubic
+     Hermite interpolant through the step's ends, exact there, local error
+     O(h^4) (the solution's polynomials gave 1.85e-3 and 2.18e-4, slope
+     3.09), f at each end once */
+  {
+    double wh[2] = { 0, 0 }, endh = 0.0;
+    long calls = 0;
+    for (int k = 0; k < 2; k++)
+      {
+        double h = 0.2 / (1 << k);
+        sym_system sys = ts_system (1, ts_osc, ts_osc_jac, NULL);
+        sym_method_opts o = ts_opts (3, 3);
+        int st;
+        void *s = T->alloc (&sys, &o, &st);
+        double y[2] = { 1.0, 0.5 }, yn[2], yd[2], t = 0.3;
+        for (int step = 0; step < 10; step++)
+          {
+            double ys[2] = { y[0], y[1] };
+            st |= T->step (s, &sys, t, h, y, yn, NULL);
+            T->accept (s);
+            const long before = sys.cnt.nrhs;
+            T->dense (s, &sys, t + h, yd);
+            endh = fmax (endh, ts_maxdiff (2, yd, yn));
+            for (int i = 1; i < 10; i++)
+              {
+                double tau = h * i / 10.0;
+                T->dense (s, &sys, t + tau, yd);
+                double ex[2] = { ys[0] * cos (tau) + ys[1] * sin (tau),
+                                 -ys[0] * sin (tau) + ys[1] * cos (tau) };
+                wh[k] = fmax (wh[k], ts_maxdiff (2, yd, ex));
+              }
+            calls += sys.cnt.nrhs - before;
+            memcpy (y, yn, sizeof y);
+            t += h;
+          }
+        CHECK (st == 0, "dense (3,3) run: %d", st);
+        T->free (s);
+      }
+    double slh = log2 (wh[0] / wh[1]);
+    printf ("dense (3,3), oscillator: interior local error %.2e (h=0.2), "
+            "%.2e (h=0.1), slope %.2f\n", wh[0], wh[1], slh);
+    CHECK (endh == 0.0 && calls == 22 && slh >= 3.7 && wh[0] < 1e-5,
+           "dense (3,3): ends %g, %ld calls, %.3g %.3g slope %.2f", endh,
+           calls, wh[0], wh[1], slh);
+  }
+
   /* pendulum, (5,4), backwards: dense between the step points agrees with
      the exact solution to the polynomials' accuracy */
   sym_system sys = ts_system (1, ts_pend, ts_pend_jac, NULL);
