@@ -296,6 +296,24 @@
 %! assert (err (5, 5, 0.05) < 2e-9);
 
 %!test
+%! ## a continued start too far off for Newton: the step is tried once more
+%! ## from the Euler start.  Before, on H = (q^2+p^2)^2/4 (a rotation at
+%! ## the rate q^2+p^2), (2,5) and (4,8) with h = 0.2 stopped at t = 1.6,
+%! ## Nodes = 20 with h = 1 at t = 4.
+%! f = @(t, y) [(y(1)^2+y(2)^2)*y(2); -(y(1)^2+y(2)^2)*y(1)];
+%! ex = @(t) [cos(1.25*t) + 0.5*sin(1.25*t), -sin(1.25*t) + 0.5*cos(1.25*t)];
+%! runs = {symplecticset("TimeStepSize", 0.2, "Q_DoFs", 2, "Nodes", 5), 10, 0.15;
+%!         symplecticset("TimeStepSize", 0.2, "Q_DoFs", 4, "Nodes", 8), 10, 2e-7;
+%!         symplecticset("TimeStepSize", 1, "Nodes", 20), 20, 1e-12};
+%! for i = 1:rows (runs)
+%!   lastwarn ("");
+%!   [t, y] = odeSPVI (f, [0 runs{i, 2}], [1; 0.5], runs{i, 1});
+%!   assert (lastwarn (), "");
+%!   assert (t(end), runs{i, 2});
+%!   assert (y(end, :), ex (t(end)), runs{i, 3});
+%! endfor
+
+%!test
 %! ## many nodes: the continued prediction of a step (its polynomials
 %! ## extrapolated) amplifies round-off like 5.8^Nodes; a wild one is not
 %! ## used.  Before, Nodes = 30 gave an error of 715 at t = 20 with h = 1
