@@ -878,16 +878,22 @@ core_move_error (spvi_core *c, double S)
    (round-off) for a fixed step, looser in adaptive runs (see spvi_step).
 
    The pairs n - 1 != m keep the earlier scheme (sym_newton to the Newton
-   tolerance, then for the method one more correction from a new
-   residual, unchecked; matrices evaluated, never extrapolated; refreshed
-   after more than 3 iterations; no history in the predictor; tol is not
-   used): their matrices are ill-conditioned (see the top), so
-   that the contraction rate measured from two corrections does not bound
-   the error left (measured on Kepler, 100 periods, local difference to a
-   tightly converged step: (3,3) 5e-16, (2,3) 8e-15 with the scheme of the
-   pairs n - 1 = m, against 2.3e-16 and 2.4e-16 with the earlier one; the
+   tolerance, then one more correction from a new residual, unchecked;
+   matrices evaluated, never extrapolated; refreshed after more than 3
+   iterations; no history in the predictor; tol is not used): their
+   matrices are ill-conditioned (see the top), so that the contraction
+   rate measured from two corrections does not bound the error left
+   (measured on Kepler, 100 periods, local difference to a tightly
+   converged step: (3,3) 5e-16, (2,3) 8e-15 with the scheme of the pairs
+   n - 1 = m, against 2.3e-16 and 2.4e-16 with the earlier one; the
    earlier one but with the history in the predictor: 1.4e-15 for
-   (2,3)).  Their results are the same as before, bit for bit. */
+   (2,3)).  The extra correction is made by the method and by the
+   companion, the value an adaptive run advances with: without it the
+   companion (3,3) of (2,2) carried a Newton error of about 100 NewtonTol
+   per step, and the error of adaptive runs grew as the tolerance shrank
+   (Kepler e = 0.6, one period, RelTol = AbsTol = 1e-8..1e-11: 1.6e-8,
+   3.6e-8, 6.3e-8, 8.4e-8; now 3.8e-10, 1.8e-11, 1.4e-13, 2.0e-12, as
+   (2,3); tests/test_spvi.m). */
 static int
 core_solve (spvi_core *c, sym_system *sys, double t, double h,
             const double *yk, double S, const spvi_state *s, double tol,
@@ -1005,8 +1011,9 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
       sys->cnt.nnewton++;
       c->nw.iters++;
     }
-  /* the earlier scheme: one more correction (not counted in iters) */
-  if (! st && method && ! fast && ! (st = core_residual (c, c->x, c->nw.r)))
+  /* the earlier scheme: one more correction (not counted in iters), in
+     the method's solve and in the companion's (see above) */
+  if (! st && ! fast && ! (st = core_residual (c, c->x, c->nw.r)))
     {
       for (int i = 0; i < N; i++)
         c->nw.dx[i] = -c->nw.r[i];
