@@ -92,7 +92,12 @@
 ## output of @var{fcn} giving Hess(H) (2d-by-2d or its column-major vector
 ## of (2d)^2 elements, as in @code{[dy, ddy] = fcn (t, y)}); finite
 ## differences of @var{fcn} (2d extra evaluations).  With a forcing term
-## the Hessian misses dF/dy and Newton works as a quasi-Newton method.
+## the Hessian misses dF/dy and Newton works as a quasi-Newton method; a
+## Hessian off by a moderate factor (0 to 10, or of the wrong sign) costs
+## iterations, not accuracy.  Newton's stopping test measures its
+## corrections, so a matrix too large by many orders of magnitude makes
+## them tiny and can pass unconverged steps as converged: the results are
+## then wrong.
 ## @code{stats.jacobian_source} says which was used.  Sparse matrices
 ## (here, in the other options, in @var{tspan}, @var{y0} and in what
 ## @var{fcn} returns) are taken as full.
