@@ -94,7 +94,12 @@
 ## differences of @var{fcn} (2d extra evaluations).  With a forcing term
 ## the Hessian misses dF/dy and Newton works as a quasi-Newton method; a
 ## Hessian off by a moderate factor (0 to 10, or of the wrong sign) costs
-## iterations, not accuracy.  Newton's stopping test measures its
+## iterations, not accuracy.  When Newton fails with the Jacobian or
+## Hessian given and it differs from finite differences of @var{fcn} at
+## the step's start by more than 1e-3 of their largest entry (a strong
+## damping, a wrong Jacobian), finite differences serve for the rest of
+## the run and the step is tried again; @code{stats.jacobian_source} then
+## says from which t.  Newton's stopping test measures its
 ## corrections, so a matrix too large by many orders of magnitude makes
 ## them tiny and can pass unconverged steps as converged: the results are
 ## then wrong.

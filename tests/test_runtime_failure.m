@@ -114,7 +114,8 @@
 %!   assert (rows (y) > 10);
 %! endfor
 
-## Newton cannot converge with a (much too) large fixed step
+## Newton cannot converge with a (much too) large fixed step; with the
+## exact Hessian too (it agrees with finite differences: kept)
 %!test
 %! f = @(t, y) [y(2); -1e3 * y(1)^3];
 %! [t, y, msg, id] = run_warn (@odeSPVI, f, [0 10], [10 0], struct ("TimeStepSize", 1));
@@ -122,6 +123,34 @@
 %! assert (regexp (msg, '^odeSPVI: Newton''s method did not converge at t = 0 with the fixed step'));
 %! assert (t, 0);
 %! assert (y, [10 0]);
+%! o = struct ("TimeStepSize", 1, "HamiltonianHessFcn", @(t, y) [3e3 * y(1)^2, 0; 0, 1]);
+%! [t, y, msg, id] = run_warn (@odeSPVI, f, [0 10], [10 0], o);
+%! assert (id, "symplectic:newton-failed");
+%! assert (t, 0);
+%! evalc ("s = odeSPVI (f, [0 10], [10 0], o);");
+%! assert (s.stats.jacobian_source, "HamiltonianHessFcn");
+
+## Newton fails with a Hessian that misses a forcing term's dF/dy (here
+## the damping -c p, c = 100: the run stopped at t = 0) or with a wrong
+## Jacobian: finite differences of FCN take over, and the run goes on as
+## it would have with them from the start
+%!test
+%! c = 100;
+%! f = @(t, y) [y(2); -y(1) - c * y(2)];
+%! for s = all3
+%!   o = struct ("TimeStepSize", 0.01);
+%!   ref = s{1} (f, [0 2], [1 0], o);
+%!   lastwarn ("");
+%!   sol = s{1} (f, [0 2], [1 0], setfield (o, "HamiltonianHessFcn", @(t, y) eye (2)));
+%!   assert (lastwarn (), "");
+%!   assert (sol.x(end), 2);
+%!   assert (sol.y, ref.y, 1e-12);
+%!   assert (sol.stats.jacobian_source, "HamiltonianHessFcn, then finite differences of FCN from t = 0");
+%! endfor
+%! sol = odeSPVI (osc, [0 2], [1 0], struct ("Jacobian", 1e6 * [1 1; 1 1]));
+%! assert (sol.stats.nsteps < 50);    # before: 261771 steps, 16 million calls
+%! assert (sol.y(:, end), [cos(2); -sin(2)], 1e-3);
+%! assert (regexp (sol.stats.jacobian_source, '^Jacobian \(constant matrix\), then finite differences of FCN from t = '));
 
 ## MaxSteps
 %!test

@@ -389,6 +389,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
 
   long k = 0;                /* fixed: steps taken */
   int last_rejected = 0;
+  long jac_checked_at = -1;   /* nsteps at the last sym_jac_check */
   double h_acc = 0, err_acc = 0;   /* the last accepted step (predictive
                                       control, control.c) */
   for (;;)
@@ -443,6 +444,31 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
         }
 
       st = type->step (r.state, sys, t, hs, y, ynew, fixed ? NULL : yerr);
+      /* Newton failed with the user's Df: if it disagrees with finite
+         differences of f (a Hessian without a forcing term's dF/dy, a
+         wrong Jacobian), finite differences serve from here on, with a
+         new stepper (its matrices came from the user's Df), and the step
+         is tried again.  Checked at most once per accepted step. */
+      if (st == SYM_NEWTON_FAIL && (sys->jac || sys->rhs_jac)
+          && jac_checked_at != sys->cnt.nsteps)
+        {
+          int dropped = 0;
+          jac_checked_at = sys->cnt.nsteps;
+          st = sym_jac_check (sys, t, y, &dropped);
+          if (! st && dropped)
+            {
+              type->free (r.state);
+              r.state = type->alloc (sys, &mo, &st);
+              if (! r.state)
+                {
+                  result = st ? st : SYM_ENOMEM;
+                  goto done;
+                }
+              continue;
+            }
+          if (! st)
+            st = SYM_NEWTON_FAIL;
+        }
       if (st < 0)
         {
           result = st;
@@ -525,6 +551,7 @@ done:
     *t_reached = t;
   sym_free (iwork);
   sym_free (work);
-  type->free (r.state);
+  if (r.state)
+    type->free (r.state);
   return result;
 }

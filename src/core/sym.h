@@ -97,6 +97,8 @@ typedef struct {
   sym_counters cnt;           /* kept by the core; zero it before a run */
   double fail_t;              /* t of the last failed callback (for messages) */
   int fail_status;            /* its status */
+  int jac_dropped;            /* jac/rhs_jac dropped by sym_jac_check */
+  double jac_dropped_t;       /* at this t */
 } sym_system;
 
 /* Calls through the system with counting and checks.  sym_rhs returns the
@@ -126,6 +128,16 @@ int sym_rhs_jac_many (sym_system *sys, int k, const double *t,
    system has it, else sym_rhs and sym_jac. */
 int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
                  double *df);
+/* After a Newton failure with the user's Df (jac or rhs_jac): compare it
+   at (t, y) with forward differences of rhs.  If they differ by more than
+   SYM_JAC_AGREE times the largest entry of either (a Hessian that misses
+   a forcing term's dF/dy, or a wrong Jacobian), jac and rhs_jac are set
+   to NULL, so that finite differences serve from then on, and
+   jac_dropped, jac_dropped_t and *dropped are set.  Returns a callback's
+   status (then nothing is dropped) or SYM_SUCCESS. */
+#define SYM_JAC_AGREE 1e-3
+int sym_jac_check (sym_system *sys, double t, const double *y,
+                   int *dropped);
 
 /* ---------------------------------------------------------------- LAPACK */
 /* Dense LU with reuse: factor once, solve many times. */

@@ -297,3 +297,46 @@ sym_rhs_jac_many (sym_system *sys, int k, const double *t, const double *y,
   int st = sym_rhs_many (sys, k, t, y, f);
   return st ? st : sym_jac_many (sys, k, t, y, f, df);
 }
+
+int
+sym_jac_check (sym_system *sys, double t, const double *y, int *dropped)
+{
+  const size_t n = 2 * (size_t) sys->dim;
+  *dropped = 0;
+  if (! sys->jac && ! sys->rhs_jac)
+    return SYM_SUCCESS;
+  double *w = sym_malloc ((2 * n * n + n) * sizeof (double));
+  if (! w)
+    return SYM_ENOMEM;
+  double *du = w, *dfd = w + n * n, *f = w + 2 * n * n;
+  sym_jac_fn jac = sys->jac;
+  sym_rhs_jac_fn rhs_jac = sys->rhs_jac;
+  int st = rhs_jac ? sym_rhs_jac (sys, t, y, f, du)
+                   : sym_jac (sys, t, y, NULL, du);
+  if (! st)
+    {
+      /* f(t, y) came with the Hessian, else jac_fd evaluates it */
+      sys->jac = NULL;
+      sys->rhs_jac = NULL;
+      st = jac_fd (sys, t, y, rhs_jac ? f : NULL, dfd);
+      double big = 0.0, dif = 0.0;
+      for (size_t i = 0; ! st && i < n * n; i++)
+        {
+          big = fmax (big, fmax (fabs (du[i]), fabs (dfd[i])));
+          dif = fmax (dif, fabs (du[i] - dfd[i]));
+        }
+      *dropped = ! st && dif > SYM_JAC_AGREE * big;
+      if (*dropped)
+        {
+          sys->jac_dropped = 1;
+          sys->jac_dropped_t = t;
+        }
+      else
+        {
+          sys->jac = jac;
+          sys->rhs_jac = rhs_jac;
+        }
+    }
+  sym_free (w);
+  return st;
+}

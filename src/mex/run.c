@@ -548,7 +548,7 @@ jac_source_name (int s)
 }
 
 static mxArray *
-stats_struct (const sym_counters *k, int jac_source)
+stats_struct (const sym_counters *k, const char *jac_source)
 {
   const char *names[] = { "nsteps", "nfailed", "nfevals", "npds",
                           "ndecomps", "nlinsols", "nnewton", "nfdevals",
@@ -558,7 +558,7 @@ stats_struct (const sym_counters *k, int jac_source)
                     k->nsolve, k->nnewton, k->nfd, k->nrhs_states };
   for (int i = 0; i < 9; i++)
     mxSetFieldByNumber (s, 0, i, mxCreateDoubleScalar (vals[i]));
-  mxSetFieldByNumber (s, 0, 9, mxCreateString (jac_source_name (jac_source)));
+  mxSetFieldByNumber (s, 0, 9, mxCreateString (jac_source));
   return s;
 }
 
@@ -919,6 +919,17 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                          name, sym_status_name (status));
     }
 
+  /* the source of Newton's matrices, and whether it was dropped for
+     finite differences after a Newton failure (sym_jac_check) */
+  char jac_used[160];
+  if (sys.jac_dropped)
+    snprintf (jac_used, sizeof jac_used, "%s, then finite differences of "
+              "FCN from t = %.17g", jac_source_name (c->jac_source),
+              sys.jac_dropped_t);
+  else
+    snprintf (jac_used, sizeof jac_used, "%s",
+              jac_source_name (c->jac_source));
+
   if (o.stats)
     {
       mexPrintf ("Number of successful steps: %ld\n", sys.cnt.nsteps);
@@ -927,7 +938,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
       mexPrintf ("Number of Newton iterations: %ld\n", sys.cnt.nnewton);
       mexPrintf ("Number of Jacobian/Hessian evaluations: %ld (source: %s%s; "
                  "%ld function calls for finite differences)\n",
-                 sys.cnt.njac, jac_source_name (c->jac_source),
+                 sys.cnt.njac, jac_used,
                  sys.rhs_jac && solver->is_spvi
                  ? ", calls that also give f" : "", sys.cnt.nfd);
       mexPrintf ("Number of LU decompositions: %ld\n", sys.cnt.nlu);
@@ -977,7 +988,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
             mxGetPr (ie)[i] = c->ie[i] + 1;
           mxSetField (s, 0, "ie", ie);
         }
-      mxSetField (s, 0, "stats", stats_struct (&sys.cnt, c->jac_source));
+      mxSetField (s, 0, "stats", stats_struct (&sys.cnt, jac_used));
       if (solver->is_spvi)
         {
           int nq = o.q_dofs, m = o.nodes;

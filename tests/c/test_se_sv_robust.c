@@ -570,6 +570,82 @@ test_bad_input_and_reset (void)
     }
 }
 
+/* Df of the damped oscillator without the damping (the Hessian of H
+   alone: a forcing term's dF/dy is not in it) */
+static int
+jac_nodamp (double t, const double *y, double *df, void *user)
+{
+  (void) t;
+  (void) y;
+  (void) user;
+  df[0] = 0.0;
+  df[1] = -1.0;
+  df[2] = 1.0;
+  df[3] = 0.0;
+  return 0;
+}
+
+/* the output sink of test_jac_check: the last row */
+static int
+keep_last (double t, const double *y, void *user)
+{
+  (void) t;
+  memcpy (user, y, 2 * sizeof (double));
+  return 0;
+}
+
+/* A Newton failure with the user's Df checks it against finite
+   differences: dropped when it disagrees (the run then goes on with
+   finite differences, as it would have from the start), kept when it
+   agrees */
+static void
+test_jac_check (void)
+{
+  tprob P;
+  sym_system sys = tp_system (&P, P_DAMPED, 1);
+  P.c = 100.0;
+  double y[2] = { 0.7, -0.4 };
+  int dropped = -1;
+  CHECK (sym_jac_check (&sys, 0.5, y, &dropped) == SYM_SUCCESS
+         && dropped == 0 && sys.jac == tp_jac && ! sys.jac_dropped,
+         "the exact Df is kept: %d", dropped);
+  sys.jac = jac_nodamp;
+  CHECK (sym_jac_check (&sys, 0.5, y, &dropped) == SYM_SUCCESS
+         && dropped == 1 && sys.jac == NULL && sys.jac_dropped
+         && sys.jac_dropped_t == 0.5, "Df without the damping is dropped");
+
+  for (int sv = 0; sv < 2; sv++)
+    {
+      double yend[2][2];
+      int dropped_run[2];
+      for (int k = 0; k < 2; k++)
+        {
+          sys = tp_system (&P, P_DAMPED, 1);
+          P.c = 100.0;
+          sys.jac = k ? jac_nodamp : NULL;
+          sym_method_opts mo = tp_opts (0, 0, 0);
+          sym_driver_opts o;
+          memset (&o, 0, sizeof o);
+          o.t0 = 0.0;
+          o.tf = 2.0;
+          o.h_fixed = 0.01;
+          o.refine = 1;
+          o.output = keep_last;
+          o.output_user = yend[k];
+          double y0[2] = { 1.0, 0.0 }, tr = 0.0;
+          int st = sym_integrate (stepper (sv), &sys, &mo, &o, y0, &tr);
+          CHECK (st == SYM_DONE && tr == 2.0, "%s, c = 100, %s: %s at t = "
+                 "%g", mname (sv), k ? "Df without damping" : "finite "
+                 "differences", sym_status_name (st), tr);
+          dropped_run[k] = sys.jac_dropped;
+        }
+      CHECK (! dropped_run[0] && dropped_run[1]
+             && maxdiff (2, yend[0], yend[1]) < 1e-12,
+             "%s: Df dropped %d %d, difference %g", mname (sv),
+             dropped_run[0], dropped_run[1], maxdiff (2, yend[0], yend[1]));
+    }
+}
+
 int
 main (void)
 {
@@ -580,6 +656,7 @@ main (void)
   test_lu_reuse ();
   test_failures ();
   test_newton_fail ();
+  test_jac_check ();
   test_alloc_failure ();
   test_bad_input_and_reset ();
   return tu_finish ("test_se_sv_robust");
