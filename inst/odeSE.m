@@ -81,7 +81,10 @@
 ## the controller or by the default MaxStep is raised to it, so that spans
 ## only a few ulps wide are integrated too; a step that fails at that size,
 ## or a MaxStep set below it, ends the run with the warning
-## @qcode{"symplectic:step-size"}.
+## @qcode{"symplectic:step-size"}.  A MaxStep that would take more than
+## 1e12 steps is refused, as such a TimeStepSize is, and a RelTol below
+## 100*eps is raised to it with the warning @qcode{"symplectic:tolerance"}
+## (near t = 0 the least step bounds neither).
 ## @item Separable
 ## @qcode{"on"} for H = T(p) + V(q) with no forcing that depends on p: the
 ## step is explicit, two evaluations of @var{fcn} per step and no Newton.
@@ -134,7 +137,8 @@
 ## returns every row computed so far.  The warnings' identifiers are
 ## @code{symplectic:newton-failed}, @code{symplectic:nonfinite},
 ## @code{symplectic:step-size}, @code{symplectic:max-steps},
-## @code{symplectic:output-stop} and @code{symplectic:callback}; bad
+## @code{symplectic:output-stop} and @code{symplectic:callback} (and
+## @code{symplectic:tolerance} for a RelTol raised to 100*eps); bad
 ## arguments raise errors with the identifier
 ## @code{Octave:invalid-input-arg} whose message begins with the solver's
 ## name.

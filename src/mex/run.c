@@ -669,6 +669,29 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                            ">= %g", name, h, tmax, 8 * DBL_EPSILON * tmax);
     }
 
+  /* adaptive steps: a MaxStep that would take more than 1e12 steps is
+     refused as such a TimeStepSize is (near t = 0 the least step, 16 ulps
+     of t, does not bound it: the run would not end), and RelTol is at
+     least 100 eps, as in other ode45 codes (below it the error test asks
+     for steps that round-off cannot give: at t0 = 0 odeSE and odeSV took
+     steps of 1e-148 at RelTol 1e-300) */
+  if (! (o.h_fixed > 0 || o.nsteps_fixed > 0))
+    {
+      double span = fabs (tspan[ntspan - 1] - tspan[0]);
+      if (o.hmax > 0 && span / o.hmax > 1e12)
+        mexErrMsgIdAndTxt (BADARG, "%s: MaxStep = %g needs %.3g steps to "
+                           "cover TSPAN, more than the 1e12 allowed; "
+                           "expected MaxStep >= %g", name, o.hmax,
+                           span / o.hmax, span / 1e12);
+      if (o.rtol < 100 * DBL_EPSILON)
+        {
+          mexWarnMsgIdAndTxt ("symplectic:tolerance", "%s: RelTol = %g is "
+                              "below 100*eps; %g is used", name, o.rtol,
+                              100 * DBL_EPSILON);
+          o.rtol = 100 * DBL_EPSILON;
+        }
+    }
+
   /* the context and the reused argument arrays of feval */
   ctx_t *c = mxCalloc (1, sizeof (ctx_t));
   c->solver = name;
