@@ -64,6 +64,12 @@
 ## Largest number of steps of a run.  Default: no limit.
 ## @end table
 ##
+## Arguments are taken in order, a later value of a name replacing an
+## earlier one; a field of a struct replaces only when it is not empty (as
+## @code{odeset} documents for @var{newopts}; Octave 7's @code{odeset}
+## empties the fields of @var{oldopts} that are empty in @var{newopts},
+## @code{symplecticset} does not), a name/value pair always.
+##
 ## Setting a field by assignment, @code{opts.Q_DoFs = 4}, works as well;
 ## scripts written for the 2013 odepkg solvers, which passed these names to
 ## @code{odeset}, keep working (with @code{odeset}'s warning).
@@ -101,9 +107,14 @@ function opts = symplecticset (varargin)
     return;
   endif
 
-  ## Split every argument into odeset's part and ours.
+  ## Every argument in order, the last value of a name winning: a field of
+  ## a struct only when it is not empty (as odeset documents for
+  ## NEWSTRUCT; Octave 7's odeset (OLD, NEW) empties OLD's fields instead),
+  ## a name/value pair always.  odeset's part is collected as pairs, one
+  ## per name (matched without regard to case), and given to odeset once.
   ours = struct ();
-  rest = {};
+  names = {};
+  vals = {};
   i = 1;
   while (i <= nargin)
     a = varargin{i};
@@ -112,29 +123,19 @@ function opts = symplecticset (varargin)
         error ("Octave:invalid-input-arg",
                "symplecticset: option structs must be 1x1");
       endif
-      names = fieldnames (a);
-      keep = struct ();
-      for k = 1:numel (names)
-        j = find (strcmpi (names{k}, fields), 1);
-        if (isempty (j))
-          keep.(names{k}) = a.(names{k});
-        elseif (! isempty (a.(names{k})) || ! isfield (ours, fields{j}))
-          ours.(fields{j}) = a.(names{k});
-        endif
+      fn = fieldnames (a);
+      for k = 1:numel (fn)
+        [ours, names, vals] = put (ours, names, vals, fields, fn{k},
+                                   a.(fn{k}), false);
       endfor
-      rest{end+1} = keep;
       i += 1;
     elseif (ischar (a) && isrow (a))
       if (i == nargin)
         error ("Octave:invalid-input-arg",
                "symplecticset: option \"%s\" has no value", a);
       endif
-      j = find (strcmpi (a, fields), 1);
-      if (isempty (j))
-        rest(end+1:end+2) = {a, varargin{i+1}};
-      else
-        ours.(fields{j}) = varargin{i+1};
-      endif
+      [ours, names, vals] = put (ours, names, vals, fields, a,
+                                 varargin{i+1}, true);
       i += 2;
     else
       error ("Octave:invalid-input-arg",
@@ -143,9 +144,8 @@ function opts = symplecticset (varargin)
     endif
   endwhile
 
-  ## odeset merges structs with each other only before name/value pairs.
-  structs = cellfun (@isstruct, rest);
-  opts = odeset (rest{structs}, rest{! structs});
+  pairs = [names; vals];
+  opts = odeset (pairs{:});
   for k = 1:numel (fields)
     if (isfield (ours, fields{k}))
       opts.(fields{k}) = ours.(fields{k});
@@ -154,6 +154,26 @@ function opts = symplecticset (varargin)
     endif
   endfor
 
+endfunction
+
+## Set option NAME to V: a package field in OURS (canonical name), any
+## other in the pairs NAMES/VALS (one entry per name, case-insensitive).
+## From a struct (always = false) an empty V only fills a name not yet set.
+function [ours, names, vals] = put (ours, names, vals, fields, name, v, always)
+  j = find (strcmpi (name, fields), 1);
+  if (! isempty (j))
+    if (always || ! isempty (v) || ! isfield (ours, fields{j}))
+      ours.(fields{j}) = v;
+    endif
+    return;
+  endif
+  k = find (strcmpi (name, names), 1);
+  if (isempty (k))
+    names{end+1} = name;
+    vals{end+1} = v;
+  elseif (always || ! isempty (v))
+    vals{k} = v;
+  endif
 endfunction
 
 %!test
@@ -181,6 +201,22 @@ endfunction
 %! assert (new.TimeStepSize, 0.5);
 %! new2 = symplecticset (old, struct ("nodes", 2));
 %! assert (new2.Nodes, 2);
+
+%!test
+%! ## (OLDOPTS, NEWOPTS): the empty fields of NEWOPTS leave OLDOPTS's, for
+%! ## odeset's fields too (odeset (OLD, NEW) of Octave 7 empties them)
+%! base = symplecticset ("RelTol", 1e-10, "AbsTol", 1e-12, "Nodes", 5);
+%! o = symplecticset (base, symplecticset ("TimeStepSize", 0.1));
+%! assert ([o.RelTol, o.AbsTol, o.Nodes, o.TimeStepSize], [1e-10, 1e-12, 5, 0.1]);
+%! o = symplecticset (base, odeset ("AbsTol", 1e-9));
+%! assert ([o.RelTol, o.AbsTol], [1e-10, 1e-9]);
+%! ## arguments in order, the last value winning; a pair sets even []
+%! o = symplecticset ("Nodes", 5, "RelTol", 1e-5, struct ("Nodes", 2, "RelTol", 1e-2));
+%! assert ([o.Nodes, o.RelTol], [2, 1e-2]);
+%! o = symplecticset (base, "RelTol", [], "reltol", 1e-7);
+%! assert (o.RelTol, 1e-7);
+%! o = symplecticset (base, "RelTol", []);
+%! assert (isempty (o.RelTol));
 
 %!error <option "Nodes" has no value> symplecticset ("Nodes")
 %!error <expected option names> symplecticset (3)
