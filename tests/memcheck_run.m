@@ -67,8 +67,19 @@ function status = memcheck_run ()
     ## a span of a few ulps of t, and a MaxStep below the least step
     [t, y] = s (osc, [1 1+1e-14], [1 0]);
     nbad += check (t(end) == 1+1e-14, name, "span of a few ulps");
-    evalc ("[t, y] = s (osc, [1 2], [1 0], struct ('MaxStep', 1e-20));");
-    nbad += check (t(end) == 1, name, "MaxStep below the least step");
+    evalc ("[t, y] = s (osc, [1e6 1e6+1e-3], [1 0], struct ('MaxStep', 1e-14));");
+    nbad += check (t(end) == 1e6, name, "MaxStep below the least step");
+    ## RelTol raised to 100 eps (a warning); a MaxStep of more than 1e12
+    ## steps and the name of a file that is no function (errors)
+    evalc ("[t, y] = s (osc, [0 0.01], [1 0], struct ('RelTol', 1e-300));");
+    nbad += check (t(end) == 0.01, name, "RelTol raised");
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("MaxStep", 1e-300));
+    nbad += expect_error (s, "Octave:invalid-input-arg", "memcheck_run.m", [0 1], [1 0]);
+    ## Newton fails with a Hessian that misses the damping: finite
+    ## differences take over (a new stepper)
+    sol = s (@(t, y) [y(2); -y(1) - 100 * y(2)], [0 0.1], [1 0], ...
+             struct ("TimeStepSize", 0.01, "HamiltonianHessFcn", @(t, y) eye (2)));
+    nbad += check (sol.x(end) == 0.1 && ! isempty (strfind (sol.stats.jacobian_source, "then finite")), name, "Hessian dropped");
     ## events, OutputFcn, OutputSel, Stats
     ev = @(t, y) deal ([y(1); y(2)], [0; 1], [0; -1]);
     [t, y, te, ye, ie] = s (osc, [0 8], [1 0], struct ("Events", ev));

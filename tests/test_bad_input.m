@@ -126,7 +126,26 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle .*got 1x1 cell", {f}, [0 1], y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle .*got 1x1 struct", struct ("f", f), [0 1], y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle .*got 1x1 logical", true, [0 1], y0);
-%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle or the name of a function, got 1x22 char", "no_such_function_xyz_1", [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must be a function handle or the name of a function, got \"no_such_function_xyz_1\", which names no function", "no_such_function_xyz_1", [0 1], y0);
+## a file on the path that is not a function (exist () gives 2 for it): a
+## text file, a script
+%!test
+%! d = tempname ();
+%! mkdir (d);
+%! unwind_protect
+%!   fid = fopen (fullfile (d, "sym_notes_xyz.txt"), "w");  fputs (fid, "x");  fclose (fid);
+%!   fid = fopen (fullfile (d, "sym_script_xyz.m"), "w");  fputs (fid, "x = 1;\n");  fclose (fid);
+%!   addpath (d);
+%!   for name = {"sym_notes_xyz.txt", "sym_script_xyz"}
+%!     assert (exist (name{1}), 2);
+%!     check_bad (all3, "Octave:invalid-input-arg", ["FCN must be a function handle or the name of a function, got \"" regexprep(name{1}, '\.', '\\.') "\", which names no function"], name{1}, [0 1], y0);
+%!     check_bad (all3, "Octave:invalid-input-arg", "Events must be a function handle or the name of a function, got \"", f, [0 1], y0, struct ("Events", name{1}));
+%!   endfor
+%! unwind_protect_cleanup
+%!   rmpath (d);
+%!   confirm_recursive_rmdir (false, "local");
+%!   rmdir (d, "s");
+%! end_unwind_protect
 
 ## ------------------------------------------------------------ TSPAN
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*of at least 2 elements, got 1x1 double", f, 0, y0);
@@ -274,9 +293,9 @@
 
 ## ------------------------------------------------------------ Events and OutputFcn
 %!test check_bad (all3, "Octave:invalid-input-arg", "Events must be a function handle or the name of a function, got 1x1 double", f, [0 1], y0, struct ("Events", 3));
-%!test check_bad (all3, "Octave:invalid-input-arg", "Events must be a function handle .*got 1x22 char", f, [0 1], y0, struct ("Events", "no_such_function_xyz_3"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Events must be a function handle .*got \"no_such_function_xyz_3\", which names no function", f, [0 1], y0, struct ("Events", "no_such_function_xyz_3"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must be a function handle or the name of a function, got 1x1 double", f, [0 1], y0, struct ("OutputFcn", 3));
-%!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must be a function handle .*got 1x22 char", f, [0 1], y0, struct ("OutputFcn", "no_such_function_xyz_4"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must be a function handle .*got \"no_such_function_xyz_4\", which names no function", f, [0 1], y0, struct ("OutputFcn", "no_such_function_xyz_4"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must be a function handle .*got 1x1 cell", f, [0 1], y0, struct ("OutputFcn", {{@odeplot}}));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return three outputs \\[VALUE, ISTERMINAL, DIRECTION\\], got 1", f, [0 1], y0, struct ("Events", @(t, y) y(1)));
 %!test check_bad (all3, "Octave:invalid-fun-call", "^bi_events1: function called with too many outputs", f, [0 1], y0, struct ("Events", @bi_events1));

@@ -45,16 +45,28 @@ is_real_numeric (const mxArray *v)
          && ! mxIsComplex (v);
 }
 
-/* "1x2 double", "2x2 sparse double", "1x1 complex double", "1x3 char": what
-   the user gave, for messages. */
-static const char *
-describe (const mxArray *v, char *buf, size_t len)
+const char *
+symmex_describe (const mxArray *v, char *buf, size_t len)
 {
   snprintf (buf, len, "%dx%d %s%s%s", (int) mxGetM (v), (int) mxGetN (v),
             mxIsSparse (v) ? "sparse " : "",
             mxIsComplex (v) ? "complex " : "", mxGetClassName (v));
   return buf;
 }
+
+const char *
+symmex_describe_fn (const mxArray *v, char *buf, size_t len)
+{
+  char name[40];
+  if (mxIsChar (v) && mxGetM (v) == 1 && mxGetN (v) > 0
+      && mxGetN (v) < sizeof name && ! mxGetString (v, name, sizeof name))
+    {
+      snprintf (buf, len, "\"%s\", which names no function", name);
+      return buf;
+    }
+  return symmex_describe (v, buf, len);
+}
+
 
 /* Element i of a real numeric array as double. */
 static double
@@ -76,7 +88,7 @@ pos_scalar (const char *solver, const mxArray *v, const char *name,
   char buf[64];
   if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive real scalar, "
-                       "got %s", solver, name, describe (v, buf, sizeof buf));
+                       "got %s", solver, name, symmex_describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! (x > 0) || (! allow_inf && ! isfinite (x)))
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive %sscalar, got %g",
@@ -91,7 +103,7 @@ pos_integer (const char *solver, const mxArray *v, const char *name,
   char buf[64];
   if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer scalar, got %s",
-                       solver, name, describe (v, buf, sizeof buf));
+                       solver, name, symmex_describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! isfinite (x) || x != floor (x))
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer, got %g",
@@ -122,7 +134,7 @@ on_off (const char *solver, const mxArray *v, const char *name)
     return mxIsLogical (v) ? mxGetLogicals (v)[0] != 0 : elem (v, 0) != 0;
   char buf[64];
   mexErrMsgIdAndTxt (BADARG, "%s: %s must be \"on\" or \"off\", got %s",
-                     solver, name, describe (v, buf, sizeof buf));
+                     solver, name, symmex_describe (v, buf, sizeof buf));
   return 0;
 }
 
@@ -147,7 +159,20 @@ symmex_is_function (const mxArray *a)
       mexCallMATLAB (1, out, 1, in, "exist");
       double e = mxGetScalar (out[0]);
       mxDestroyArray (out[0]);
-      return e == 2 || e == 3 || e == 5 || e == 103;
+      if (e == 3 || e == 5 || e == 103)
+        return 1;
+      if (e != 2)
+        return 0;
+      /* 2 is any file on the path, a script too: nargin knows functions */
+      out[0] = NULL;
+      mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "nargin");
+      if (ex)
+        {
+          mxDestroyArray (ex);
+          return 0;
+        }
+      mxDestroyArray (out[0]);
+      return 1;
     }
   return 0;
 }
@@ -160,7 +185,7 @@ function_opt (const char *solver, const mxArray *opts, const char *name)
   if (v && ! symmex_is_function (v))
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be a function handle or the "
                        "name of a function, got %s", solver, name,
-                       describe (v, buf, sizeof buf));
+                       symmex_describe_fn (v, buf, sizeof buf));
   return v;
 }
 
@@ -175,7 +200,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
       && ! (mxIsStruct (opts) && mxGetNumberOfElements (opts) == 1))
     mexErrMsgIdAndTxt (BADARG, "%s: OPTS must be a struct from odeset or "
                        "symplecticset (or a plain 1x1 struct), got %s",
-                       solver, describe (opts, buf, sizeof buf));
+                       solver, symmex_describe (opts, buf, sizeof buf));
   if (opts && mxIsEmpty (opts))
     opts = NULL;
 
@@ -190,7 +215,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
       if (! is_real_numeric (v) || (k != 1 && k != (size_t) n))
         mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a positive scalar or "
                            "a vector of %d elements (numel (Y0)), got %s",
-                           solver, n, describe (v, buf, sizeof buf));
+                           solver, n, symmex_describe (v, buf, sizeof buf));
       for (size_t i = 0; i < k; i++)
         {
           o->atol[i] = elem (v, i);
@@ -217,7 +242,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
       if (! is_real_numeric (v) && ! mxIsLogical (v))
         mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must be a vector of "
                            "indices into Y0, got %s", solver,
-                           describe (v, buf, sizeof buf));
+                           symmex_describe (v, buf, sizeof buf));
       o->outputsel = mxMalloc (sizeof (int) * (k + 1));
       if (mxIsLogical (v))
         {
@@ -268,7 +293,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
       else
         mexErrMsgIdAndTxt (BADARG, "%s: Jacobian must be a function handle "
                            "or a real %dx%d matrix (df/dy), got %s",
-                           solver, n, n, describe (v, buf, sizeof buf));
+                           solver, n, n, symmex_describe (v, buf, sizeof buf));
     }
   o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");
   o->h_fixed = (v = field (opts, "TimeStepSize"))
@@ -333,7 +358,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
               char what[64];
               mexErrMsgIdAndTxt (BADARG, "%s: NewtonMatrix must be \"auto\", "
                                  "\"kept\" or \"new\", got %s", solver,
-                                 describe (vm, what, sizeof what));
+                                 symmex_describe (vm, what, sizeof what));
             }
           o->newton_matrix = name_eq (buf, "kept") ? SYM_MATRIX_KEPT
                              : name_eq (buf, "new") ? SYM_MATRIX_NEW

@@ -57,15 +57,6 @@ col (int n)
   return mxCreateDoubleMatrix (n, 1, mxREAL);
 }
 
-static const char *
-shape (const mxArray *a, char *buf, size_t len)
-{
-  snprintf (buf, len, "%dx%d %s%s%s", (int) mxGetM (a), (int) mxGetN (a),
-            mxIsSparse (a) ? "sparse " : "",
-            mxIsComplex (a) ? "complex " : "", mxGetClassName (a));
-  return buf;
-}
-
 /* Check a value returned by a user's function: real numeric with k
    elements; convert it to double if needed.  Returns a double array. */
 static const double *
@@ -95,7 +86,7 @@ checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
                            expect);
       mexErrMsgIdAndTxt (BADARG, "%s: %s must return %s, got %s at "
                          "t = %.17g", c->solver, what, expect,
-                         a ? shape (a, buf, sizeof buf) : "nothing", t);
+                         a ? symmex_describe (a, buf, sizeof buf) : "nothing", t);
     }
   if (! mxIsDouble (a))
     {
@@ -586,7 +577,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   if (! symmex_is_function (fcn))
     mexErrMsgIdAndTxt (BADARG, "%s: FCN must be a function handle or the "
                        "name of a function, got %s", name,
-                       shape (fcn, buf, sizeof buf));
+                       symmex_describe_fn (fcn, buf, sizeof buf));
 
   /* TSPAN */
   const mxArray *ts = symmex_full (prhs[1]);
@@ -594,7 +585,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
       || (mxGetM (ts) != 1 && mxGetN (ts) != 1))
     mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be a real vector [T0, TF] or "
                        "[T0, T1, ..., TF] of at least 2 elements, got %s",
-                       name, shape (ts, buf, sizeof buf));
+                       name, symmex_describe (ts, buf, sizeof buf));
   mxArray *tsd = mxIsDouble (ts) ? NULL : to_double (ts);
   const double *tspan = mxGetPr (tsd ? tsd : ts);
   int ntspan = (int) mxGetNumberOfElements (ts);
@@ -623,7 +614,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                            "value", name);
       mexErrMsgIdAndTxt (BADARG, "%s: Y0 must be a non-empty real numeric "
                          "vector [q0; p0], got %s", name,
-                         shape (y0a, buf, sizeof buf));
+                         symmex_describe (y0a, buf, sizeof buf));
     }
   int n = (int) mxGetNumberOfElements (y0a);
   if (n % 2)
@@ -795,7 +786,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
         mexErrMsgIdAndTxt (BADARG, "%s: the Events function must return "
                            "[VALUE, ISTERMINAL, DIRECTION] with a non-empty "
                            "real VALUE, got VALUE = %s", name,
-                           eo[0] ? shape (eo[0], buf, sizeof buf)
+                           eo[0] ? symmex_describe (eo[0], buf, sizeof buf)
                            : "nothing");
       c->nevents = (int) mxGetNumberOfElements (eo[0]);
       for (int k = 0; k < 3; k++)

@@ -51,8 +51,15 @@ typedef struct {
 void symmex_parse_options (const char *solver, const mxArray *opts, int n,
                            int is_spvi, symmex_opts *o);
 
-/* Is a a function handle, or the name of a function? */
+/* Is a a function handle, or the name of a function (not of a script or
+   of another file)? */
 int symmex_is_function (const mxArray *a);
+
+/* "1x2 double", "2x2 sparse double", "1x1 complex double", "1x3 char": what
+   the user gave, for messages (into buf, returned) */
+const char *symmex_describe (const mxArray *v, char *buf, size_t len);
+/* the same for a value that should be a function; a name in quotes */
+const char *symmex_describe_fn (const mxArray *v, char *buf, size_t len);
 
 /* a itself, or when a is sparse its full copy (freed when the MEX function
    returns, or by the caller): sparse arguments, options and values returned
