@@ -42,17 +42,18 @@
 ## error stays bounded over very long runs and momenta are conserved to
 ## round-off.
 ##
-## @strong{Order.}  The order is 2*min(n-1, 2m-n+1):
+## @strong{Order.}  Pairs are written (n, m) = (Q_DoFs, Nodes) here and
+## below.  The order is 2*min(n-1, 2m-n+1):
 ##
 ## @multitable @columnfractions .2 .2 .2 .4
-## @headitem Nodes m @tab Q_DoFs n @tab order @tab note
-## @item 1 @tab 2 @tab 2 @tab implicit midpoint rule
-## @item 2 @tab 3 @tab 4 @tab 2-stage Gauss collocation
-## @item 2 @tab 4 @tab 2 @tab loses order (n-1 > m)
+## @headitem Q_DoFs n @tab Nodes m @tab order @tab note
+## @item 2 @tab 1 @tab 2 @tab implicit midpoint rule
+## @item 3 @tab 2 @tab 4 @tab 2-stage Gauss collocation
+## @item 4 @tab 2 @tab 2 @tab loses order (n-1 > m)
 ## @item 3 @tab 3 @tab 4 @tab
-## @item 3 @tab 4 @tab 6 @tab default; 3-stage Gauss collocation
-## @item 3 @tab 5 @tab 4 @tab loses order (n-1 > m)
-## @item m @tab m+1 @tab 2m @tab the best n for m nodes
+## @item 4 @tab 3 @tab 6 @tab default; 3-stage Gauss collocation
+## @item 5 @tab 3 @tab 4 @tab loses order (n-1 > m)
+## @item m+1 @tab m @tab 2m @tab the best n for m nodes
 ## @end multitable
 ##
 ## Pairs with n > 2m (such as (3,1) or (5,2)) do not converge and are
