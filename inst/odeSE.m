@@ -130,6 +130,11 @@
 ## row of times.  @code{odeSE} steps one state at a time; its
 ## finite-difference Jacobians (no Jacobian or Hessian source) then take one
 ## call for their 2d perturbed states instead of 2d calls.
+## @item NonNegative, Mass
+## Not supported (a projection onto y >= 0 would break the symplectic map;
+## Hamilton's equations have no mass matrix): ignored with the warning
+## @qcode{"symplectic:unsupported-option"}.  The other fields of
+## @code{odeset} are hints for other solvers and are ignored.
 ## @end table
 ##
 ## A run that cannot go on (Newton fails with the fixed step or at the

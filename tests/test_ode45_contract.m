@@ -645,6 +645,19 @@
 %! endfor
 
 %!test
+%! ## NonNegative and Mass change the problem: not taken, with a warning
+%! for i = 1:3
+%!   for opt = {"NonNegative", 1; "Mass", eye(2)}.'
+%!     lastwarn ("");
+%!     evalc ("[t, y] = solvers{i} (@contract_osc, [0 1], [1 0], odeset (opt{:}));");
+%!     [msg, id] = lastwarn ();
+%!     assert (id, "symplectic:unsupported-option");
+%!     assert (msg, [func2str(solvers{i}) ": option " opt{1} " is not supported and is ignored"]);
+%!     assert (y(end, :), [cos(1), -sin(1)], 0.05);   # odeSE at RelTol 1e-3
+%!   endfor
+%! endfor
+
+%!test
 %! ## RelTol below 100 eps is raised to it, with a warning (at t0 = 0 the
 %! ## least step does not stop an error test that asks for steps round-off
 %! ## cannot give: odeSE and odeSV did not finish)

@@ -315,6 +315,18 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
   o->max_steps = (v = field (opts, "MaxSteps"))
                  ? pos_integer (solver, v, "MaxSteps", 1, 1000000000000L) : 0;
 
+  /* odeset fields that would change the problem solved: not taken (a
+     projection onto y >= 0 would break the symplectic map; Hamilton's
+     equations have no mass matrix), and said so rather than ignored
+     silently.  odeset's hints for other solvers (JPattern, MaxOrder, BDF,
+     ...) are ignored. */
+  static const char *unsupported[] = { "NonNegative", "Mass" };
+  for (size_t i = 0; i < sizeof unsupported / sizeof *unsupported; i++)
+    if (field (opts, unsupported[i]))
+      mexWarnMsgIdAndTxt ("symplectic:unsupported-option", "%s: option %s "
+                          "is not supported and is ignored", solver,
+                          unsupported[i]);
+
   /* odeSPVI: Q_DoFs (modes of q) and Nodes (alias P_DoFs); odepkg's
      PolynomialDegree sets Q_DoFs = degree + 1 (and Nodes unless given). */
   o->nodes = 3;
