@@ -281,6 +281,8 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "NormControl must be \"on\" or \"off\", got 1x5 char", f, [0 1], y0, struct ("NormControl", "maybe"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Stats must be \"on\" or \"off\", got 1x1 complex double", f, [0 1], y0, struct ("Stats", 5i));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Separable must be \"on\" or \"off\", got 1x1 char", f, [0 1], y0, struct ("Separable", "x"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "NormControl must be \"on\" or \"off\", got 1x1 double", f, [0 1], y0, struct ("NormControl", NaN));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Stats must be \"on\" or \"off\", got 2x1 char", f, [0 1], y0, struct ("Stats", ["o"; "n"]));
 %!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got 1x3 char", f, [0 1], y0, struct ("NewtonMatrix", "old"));
 %!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got 1x1 double", f, [0 1], y0, struct ("NewtonMatrix", 1));
 %!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got 1x9 char", f, [0 1], y0, struct ("NewtonMatrix", "automatic"));

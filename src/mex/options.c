@@ -114,11 +114,11 @@ pos_integer (const char *solver, const mxArray *v, const char *name,
   return (long) x;
 }
 
-/* "on"/"off" strings, or a logical/numeric scalar. */
+/* "on"/"off" strings, or a logical/numeric finite scalar (nonzero: on). */
 static int
 on_off (const char *solver, const mxArray *v, const char *name)
 {
-  if (mxIsChar (v))
+  if (mxIsChar (v) && mxGetM (v) == 1)
     {
       char buf[8];
       if (mxGetString (v, buf, sizeof buf) == 0)
@@ -130,7 +130,8 @@ on_off (const char *solver, const mxArray *v, const char *name)
         }
     }
   else if ((mxIsLogical (v) || is_real_numeric (v))
-           && mxGetNumberOfElements (v) == 1)
+           && mxGetNumberOfElements (v) == 1
+           && (mxIsLogical (v) || isfinite (elem (v, 0))))
     return mxIsLogical (v) ? mxGetLogicals (v)[0] != 0 : elem (v, 0) != 0;
   char buf[64];
   mexErrMsgIdAndTxt (BADARG, "%s: %s must be \"on\" or \"off\", got %s",
