@@ -102,7 +102,8 @@
 ## the step's start by more than 1e-3 of their largest entry (a strong
 ## damping, a wrong Jacobian), finite differences serve for the rest of
 ## the run and the step is tried again; @code{stats.jacobian_source} then
-## says from which t.  Newton's stopping test measures its
+## says from which t.  (At most three checks that agree are made in a
+## run: each costs a Jacobian and 2d+1 calls of @var{fcn}.)  Newton's stopping test measures its
 ## corrections, so a matrix too large by many orders of magnitude makes
 ## them tiny and can pass unconverged steps as converged: the results are
 ## then wrong.

@@ -96,7 +96,7 @@
 ## against 26-28% without it at RelTol 1e-4 to 1e-8.  With that, and
 ## the companion's Newton matrices interpolated from the method's node
 ## Jacobians of the same step (no call of @var{fcn}), the runs make
-## 3629 4750 8005 13330 24879 evaluations of f and of its Jacobian (each
+## 3635 4750 8005 13330 24879 evaluations of f and of its Jacobian (each
 ## counted once, as separate callbacks; with the Hessian as second output
 ## of @var{fcn} that is nfevals + 2*npds) at RelTol 1e-4 to 1e-12, against
 ## 4765 6876 10763 14356 24398 before both: 7-31% fewer down to 1e-10, 2%

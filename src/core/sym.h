@@ -136,6 +136,8 @@ int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
    jac_dropped, jac_dropped_t and *dropped are set.  Returns a callback's
    status (then nothing is dropped) or SYM_SUCCESS. */
 #define SYM_JAC_AGREE 1e-3
+/* sym_integrate checks no more after this many checks that agreed */
+#define SYM_JAC_CHECKS 3
 int sym_jac_check (sym_system *sys, double t, const double *y,
                    int *dropped);
 

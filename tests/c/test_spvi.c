@@ -747,63 +747,71 @@ test_adaptive_kepler (void)
 }
 
 /* ----------------------------------------------------------- dense output */
+/* Ten steps of h with the pair (n, m) on the harmonic oscillator (exact:
+   q = q0 cos t + p0 sin t, p = -q0 sin t + p0 cos t) from (1, 0.5) at
+   t = 0.3: the largest error of the dense output inside the steps
+   against the exact flow from each step's start (its local error), the
+   largest mismatch at the steps' ends into *ends, and the rhs calls the
+   dense output made into *calls. */
+static double
+dense_osc (int n, int m, double h, double *ends, long *calls)
+{
+  sym_system sys = ts_system (1, ts_osc, ts_osc_jac, NULL);
+  sym_method_opts o = ts_opts (n, m);
+  o.want_dense = 1;
+  int st;
+  void *s = T->alloc (&sys, &o, &st);
+  double y[2] = { 1.0, 0.5 }, yn[2], yd[2], t = 0.3, worst = 0.0;
+  *ends = 0.0;
+  *calls = 0;
+  for (int step = 0; step < 10; step++)
+    {
+      double ys[2] = { y[0], y[1] };
+      st |= T->step (s, &sys, t, h, y, yn, NULL);
+      T->accept (s);
+      const long before = sys.cnt.nrhs;
+      T->dense (s, &sys, t, yd);
+      *ends = fmax (*ends, ts_maxdiff (2, yd, ys));
+      T->dense (s, &sys, t + h, yd);
+      *ends = fmax (*ends, ts_maxdiff (2, yd, yn));
+      for (int i = 1; i < 10; i++)
+        {
+          double tau = h * i / 10.0;
+          T->dense (s, &sys, t + tau, yd);
+          double ex[2] = { ys[0] * cos (tau) + ys[1] * sin (tau),
+                           -ys[0] * sin (tau) + ys[1] * cos (tau) };
+          worst = fmax (worst, ts_maxdiff (2, yd, ex));
+        }
+      *calls += sys.cnt.nrhs - before;
+      memcpy (y, yn, sizeof y);
+      t += h;
+    }
+  CHECK (st == 0, "dense run (%d,%d): %d", n, m, st);
+  T->free (s);
+  return worst;
+}
+
 static void
 test_dense (void)
 {
-  /* harmonic oscillator: exact q = q0 cos t + p0 sin t, p = -q0 sin t +
-     p0 cos t */
-  const int n = 4, m = 3;
-  double worst[2] = { 0, 0 }, ends = 0.0;
+  /* (4,3): y' interpolated at -1, the m nodes and +1, whose values there
+     are off by O(h^(m+1)) (the stage order): local error O(h^(m+2)) =
+     O(h^5); the polynomials of the solution alone (q of degree n - 1 = 3)
+     gave O(h^4): 9.3e-7 and 5.8e-8, slope 4.00.  f at the step ends, each
+     once (the end of one step is the start of the next): 11 calls for 10
+     steps. */
+  double ends[2], worst[2];
+  long calls[2];
   for (int k = 0; k < 2; k++)
-    {
-      double h = 0.2 / (1 << k);
-      sym_system sys = ts_system (1, ts_osc, ts_osc_jac, NULL);
-      sym_method_opts o = ts_opts (n, m);
-      o.want_dense = 1;
-      int st;
-      void *s = T->alloc (&sys, &o, &st);
-      double y[2] = { 1.0, 0.5 }, yn[2], yd[2], t = 0.3;
-      long dense_calls = 0;
-      for (int step = 0; step < 10; step++)
-        {
-          double ys[2] = { y[0], y[1] };
-          st |= T->step (s, &sys, t, h, y, yn, NULL);
-          T->accept (s);
-          const long before = sys.cnt.nrhs;
-          T->dense (s, &sys, t, yd);
-          ends = fmax (ends, ts_maxdiff (2, yd, ys));
-          T->dense (s, &sys, t + h, yd);
-          ends = fmax (ends, ts_maxdiff (2, yd, yn));
-          /* interior against the exact flow from the step's start (the
-             local error of the dense polynomials) */
-          for (int i = 1; i < 10; i++)
-            {
-              double tau = h * i / 10.0;
-              T->dense (s, &sys, t + tau, yd);
-              double ex[2] = { ys[0] * cos (tau) + ys[1] * sin (tau),
-                               -ys[0] * sin (tau) + ys[1] * cos (tau) };
-              worst[k] = fmax (worst[k], ts_maxdiff (2, yd, ex));
-            }
-          dense_calls += sys.cnt.nrhs - before;
-          memcpy (y, yn, sizeof y);
-          t += h;
-        }
-      CHECK (st == 0, "dense run: %d", st);
-      /* f at the step ends, each once: the end of one step is the start
-         of the next */
-      CHECK (dense_calls == 11, "dense output made %ld rhs calls for 10 "
-             "steps", dense_calls);
-      T->free (s);
-    }
+    worst[k] = dense_osc (4, 3, 0.2 / (1 << k), &ends[k], &calls[k]);
   double sl = log2 (worst[0] / worst[1]);
   printf ("dense (4,3), oscillator: interior local error %.2e (h=0.2), "
           "%.2e (h=0.1), slope %.2f; endpoints %.1e\n", worst[0], worst[1],
-          sl, ends);
-  CHECK (ends == 0.0, "endpoints off by %g", ends);
-  /* y' interpolated at -1, the m nodes and +1, whose values there are
-     off by O(h^(m+1)) (the stage order): local error O(h^(m+2)) = O(h^5);
-     the polynomials of the solution alone (q of degree n - 1 = 3) gave
-     O(h^4): 9.3e-7 and 5.8e-8, slope 4.00 */
+          sl, fmax (ends[0], ends[1]));
+  CHECK (ends[0] == 0.0 && ends[1] == 0.0, "endpoints off by %g %g",
+         ends[0], ends[1]);
+  CHECK (calls[0] == 11 && calls[1] == 11, "dense output made %ld, %ld rhs "
+         "calls for 10 steps", calls[0], calls[1]);
   CHECK (sl >= 4.7 && worst[0] < 1e-7, "dense: %.3g %.3g slope %.2f",
          worst[0], worst[1], sl);
 
@@ -811,47 +819,15 @@ test_dense (void)
      Hermite interpolant through the step's ends, exact there, local error
      O(h^4) (the solution's polynomials gave 1.85e-3 and 2.18e-4, slope
      3.09), f at each end once */
-  {
-    double wh[2] = { 0, 0 }, endh = 0.0;
-    long calls = 0;
-    for (int k = 0; k < 2; k++)
-      {
-        double h = 0.2 / (1 << k);
-        sym_system sys = ts_system (1, ts_osc, ts_osc_jac, NULL);
-        sym_method_opts o = ts_opts (3, 3);
-        int st;
-        void *s = T->alloc (&sys, &o, &st);
-        double y[2] = { 1.0, 0.5 }, yn[2], yd[2], t = 0.3;
-        for (int step = 0; step < 10; step++)
-          {
-            double ys[2] = { y[0], y[1] };
-            st |= T->step (s, &sys, t, h, y, yn, NULL);
-            T->accept (s);
-            const long before = sys.cnt.nrhs;
-            T->dense (s, &sys, t + h, yd);
-            endh = fmax (endh, ts_maxdiff (2, yd, yn));
-            for (int i = 1; i < 10; i++)
-              {
-                double tau = h * i / 10.0;
-                T->dense (s, &sys, t + tau, yd);
-                double ex[2] = { ys[0] * cos (tau) + ys[1] * sin (tau),
-                                 -ys[0] * sin (tau) + ys[1] * cos (tau) };
-                wh[k] = fmax (wh[k], ts_maxdiff (2, yd, ex));
-              }
-            calls += sys.cnt.nrhs - before;
-            memcpy (y, yn, sizeof y);
-            t += h;
-          }
-        CHECK (st == 0, "dense (3,3) run: %d", st);
-        T->free (s);
-      }
-    double slh = log2 (wh[0] / wh[1]);
-    printf ("dense (3,3), oscillator: interior local error %.2e (h=0.2), "
-            "%.2e (h=0.1), slope %.2f\n", wh[0], wh[1], slh);
-    CHECK (endh == 0.0 && calls == 22 && slh >= 3.7 && wh[0] < 1e-5,
-           "dense (3,3): ends %g, %ld calls, %.3g %.3g slope %.2f", endh,
-           calls, wh[0], wh[1], slh);
-  }
+  for (int k = 0; k < 2; k++)
+    worst[k] = dense_osc (3, 3, 0.2 / (1 << k), &ends[k], &calls[k]);
+  sl = log2 (worst[0] / worst[1]);
+  printf ("dense (3,3), oscillator: interior local error %.2e (h=0.2), "
+          "%.2e (h=0.1), slope %.2f\n", worst[0], worst[1], sl);
+  CHECK (ends[0] == 0.0 && ends[1] == 0.0 && calls[0] == 11
+         && calls[1] == 11 && sl >= 3.7 && worst[0] < 1e-5,
+         "dense (3,3): ends %g %g, calls %ld %ld, %.3g %.3g slope %.2f",
+         ends[0], ends[1], calls[0], calls[1], worst[0], worst[1], sl);
 
   /* pendulum, (5,4), backwards: dense between the step points agrees with
      the exact solution to the polynomials' accuracy */
