@@ -99,7 +99,7 @@
 ## Hessian off by a moderate factor (0 to 10, or of the wrong sign) costs
 ## iterations, not accuracy.  When Newton fails with the Jacobian or
 ## Hessian given and it differs from finite differences of @var{fcn} at
-## the step's start by more than 1e-3 of their largest entry (a strong
+## the step's start by more than a tenth of their largest entry (a strong
 ## damping, a wrong Jacobian), finite differences serve for the rest of
 ## the run and the step is tried again; @code{stats.jacobian_source} then
 ## says from which t.  (At most three checks that agree are made in a
@@ -117,9 +117,8 @@
 ## from the dense output (cubic Hermite interpolation between steps, from
 ## @var{fcn} at the step points).  An event counts where its function
 ## changes sign (in the chosen direction) after t0: a zero at t0 itself is
-## not reported.  Events located at the time of a terminal event (to the
-## few ulps of their location) are reported with it, in the order of the
-## event functions.  @code{Refine}
+## not reported.  Events located at the time of a terminal event (within
+## the round-off of their location) are reported with it.  @code{Refine}
 ## (default 1: step points only, where the method's properties hold) adds
 ## interpolated rows between steps; as in @code{ode45} it is ignored with
 ## more than two @var{tspan} elements and for the @var{sol} output.

@@ -129,6 +129,12 @@
 %! assert (t, 0);
 %! evalc ("s = odeSPVI (f, [0 10], [10 0], o);");
 %! assert (s.stats.jacobian_source, "HamiltonianHessFcn");
+%! ## nor at q = 1e6, where the finite differences (steps of sqrt(eps) |q|)
+%! ## of a pendulum err by 1%
+%! o = struct ("TimeStepSize", 1.5, "MaxNewtonIterations", 1, ...
+%!             "HamiltonianHessFcn", @(t, y) [cos(y(1)) 0; 0 1]);
+%! evalc ("s = odeSPVI (@(t, y) [y(2); -sin(y(1))], [0 30], [1e6+1; 2.5], o);");
+%! assert (s.stats.jacobian_source, "HamiltonianHessFcn");
 
 ## Newton fails with a Hessian that misses a forcing term's dF/dy (here
 ## the damping -c p, c = 100: the run stopped at t = 0) or with a wrong

@@ -294,6 +294,14 @@
 %! assert (e1 < 2e-8);
 %! assert (log2 (e1 / e2) > 3.8);
 %! assert (err (5, 5, 0.05) < 2e-9);
+%! ## adaptive: the steps follow the companion's order, the cubic's error
+%! ## dominates between them (measured 2.6e-7, 2.3e-5; (4,3) 6.6e-10)
+%! ts = linspace (0, 10, 2001)';
+%! for nm = [3 3 5e-7; 4 4 5e-5; 4 3 1e-9].'
+%!   o = symplecticset ("RelTol", 1e-9, "AbsTol", 1e-9, "Q_DoFs", nm(1), "Nodes", nm(2));
+%!   [t, y] = odeSPVI (f, ts, [0; 1], o);
+%!   assert (max (abs (y - [sin(ts), cos(ts)])(:)) < nm(3));
+%! endfor
 
 %!test
 %! ## adaptive (2,2): the companion (3,3) the run advances with is

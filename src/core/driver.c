@@ -121,10 +121,11 @@ locate (run_t *r, int k, double ta, double ga, double tb, double gb,
 
 /* Find the events in the accepted step (t, tnew]; report them in time
    order up to and including the first terminal one, and those located at
-   its time too (within the few ulps to which locate brackets a zero: two
-   event functions that vanish together are both reported whichever of
-   them is terminal).  *tstop is set to the terminal event's time (or
-   stays NAN). */
+   its time too: within 32 ulps of t and 64 eps of the step (two event
+   functions that vanish together, located apart by the round-off of the
+   dense output and of the functions, are both reported whichever of them
+   is terminal; q and tanh(q) near t = 0 came out 1e-17 apart).  *tstop
+   is set to the terminal event's time (or stays NAN). */
 static int
 handle_events (run_t *r, double t, double tnew, double *tstop)
 {
@@ -153,11 +154,11 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
       tfound[j] = te;
       kfound[j] = k;
     }
+  const double same = 32 * DBL_EPSILON * fmax (fabs (t), fabs (tnew))
+                      + 64 * DBL_EPSILON * fabs (tnew - t);
   for (int j = 0; j < nf; j++)
     {
-      if (! isnan (*tstop)
-          && ! (fabs (tfound[j] - *tstop)
-                <= fmax (4 * DBL_EPSILON * fabs (*tstop), DBL_MIN)))
+      if (! isnan (*tstop) && ! (fabs (tfound[j] - *tstop) <= same))
         break;
       int st = r->type->dense (r->state, r->sys, tfound[j], r->ydense);
       if (st)
@@ -460,7 +461,11 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           int dropped = 0;
           jac_checked_at = sys->cnt.nsteps;
           st = sym_jac_check (sys, t, y, &dropped);
-          if (! st && dropped)
+          /* a NaN or a smaller step asked for by the check's calls: the
+             step's own failure stands */
+          if (st > 0)
+            st = SYM_NEWTON_FAIL;
+          else if (! st && dropped)
             {
               type->free (r.state);
               r.state = type->alloc (sys, &mo, &st);
@@ -471,7 +476,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
                 }
               continue;
             }
-          if (! st)
+          else if (! st)
             {
               jac_agreed++;
               st = SYM_NEWTON_FAIL;

@@ -107,7 +107,9 @@
    mismatch, round-off then and O(h^3) for (2,1), is spread linearly, so
    the output ends on the step's value.  The other pairs of order below
    8: the cubic Hermite interpolant through the step's ends (f there, as
-   above), O(h^min(4, order)); their solution's polynomials are only
+   above), O(h^min(4, order)) (in adaptive runs, whose steps follow the
+   companion's higher order, it is the larger error); their solution's
+   polynomials are only
    O(h^(order/2)) (p for n - 1 < m, q for n - 1 > m; measured in
    tests/c/test_spvi.c and tests/test_spvi.m).  Without f at an end (NaN
    there), and for the other pairs of order 8 and more: q from the
