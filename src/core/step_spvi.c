@@ -109,12 +109,11 @@
    8: the cubic Hermite interpolant through the step's ends (f there, as
    above), O(h^min(4, order)) (in adaptive runs, whose steps follow the
    companion's higher order, it is the larger error); their solution's
-   polynomials are only
-   O(h^(order/2)) (p for n - 1 < m, q for n - 1 > m; measured in
-   tests/c/test_spvi.c and tests/test_spvi.m).  Without f at an end (NaN
-   there), and for the other pairs of order 8 and more: q from the
-   Legendre series of the last accepted step, p from the polynomial
-   through (-1, p_k), (z_j, P_j), (1, p_{k+1}). */
+   polynomials are only O(h^(order/2)) (p for n - 1 < m, q for n - 1 > m;
+   measured in tests/c/test_spvi.c and tests/test_spvi.m).  Without f at
+   an end (NaN there), and for the other pairs of order 8 and more: q
+   from the Legendre series of the last accepted step, p from the
+   polynomial through (-1, p_k), (z_j, P_j), (1, p_{k+1}). */
 #include "sym.h"
 #include "control.h"
 #include "steprec.h"
