@@ -88,7 +88,8 @@ pos_scalar (const char *solver, const mxArray *v, const char *name,
   char buf[64];
   if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive real scalar, "
-                       "got %s", solver, name, symmex_describe (v, buf, sizeof buf));
+                       "got %s", solver, name,
+                       symmex_describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! (x > 0) || (! allow_inf && ! isfinite (x)))
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive %sscalar, got %g",

@@ -86,7 +86,8 @@ checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
                            expect);
       mexErrMsgIdAndTxt (BADARG, "%s: %s must return %s, got %s at "
                          "t = %.17g", c->solver, what, expect,
-                         a ? symmex_describe (a, buf, sizeof buf) : "nothing", t);
+                         a ? symmex_describe (a, buf, sizeof buf)
+                         : "nothing", t);
     }
   if (! mxIsDouble (a))
     {
