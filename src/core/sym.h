@@ -128,6 +128,13 @@ int sym_rhs_jac_many (sym_system *sys, int k, const double *t,
    system has it, else sym_rhs and sym_jac. */
 int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
                  double *df);
+/* How far the user's Df may differ from forward differences: a tenth
+   (the differences, with steps of sqrt(eps) max(1, |y_i|), err by 1%
+   where f varies on a scale far below |y|, a pendulum at q = 1e6; a
+   missing damping c against a Hessian of size 1 differs by c).
+   sym_integrate checks no more after SYM_JAC_CHECKS checks that agreed. */
+#define SYM_JAC_AGREE 0.1
+#define SYM_JAC_CHECKS 3
 /* After a Newton failure with the user's Df (jac or rhs_jac): compare it
    at (t, y) with forward differences of rhs.  If they differ by more than
    SYM_JAC_AGREE times the largest entry of either (a Hessian that misses
@@ -135,12 +142,6 @@ int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
    to NULL, so that finite differences serve from then on, and
    jac_dropped, jac_dropped_t and *dropped are set.  Returns a callback's
    status (then nothing is dropped) or SYM_SUCCESS. */
-/* a tenth: forward differences with steps of sqrt(eps) max(1, |y_i|) err
-   by 1% where f varies on a scale far below |y| (a pendulum at q = 1e6),
-   while a missing damping c against a Hessian of size 1 differs by c */
-#define SYM_JAC_AGREE 0.1
-/* sym_integrate checks no more after this many checks that agreed */
-#define SYM_JAC_CHECKS 3
 int sym_jac_check (sym_system *sys, double t, const double *y,
                    int *dropped);
 

@@ -67,7 +67,6 @@ symmex_describe_fn (const mxArray *v, char *buf, size_t len)
   return symmex_describe (v, buf, len);
 }
 
-
 /* Element i of a real numeric array as double. */
 static double
 elem (const mxArray *v, size_t i)
