@@ -51,11 +51,12 @@
 ## unlike Octave's @code{ode45}, a fourth argument that is not a struct is
 ## refused rather than taken as @var{par1} (pass [] before the
 ## parameters).  @var{t} is a column; @var{y} has one row per time, in
-## double precision whatever the class of @var{tspan} and @var{y0}.  With one output,
-## @var{sol} is a struct with the fields of @code{ode45}: @code{x} (row of
-## times), @code{y} (one column per time), @code{solver}, @code{xe},
-## @code{ye}, @code{ie} (with Events) and @code{stats}.  With no output the
-## solution is plotted with @code{odeplot}.
+## double precision whatever the class of @var{tspan} and @var{y0}.  With
+## one output, @var{sol} is a struct with the fields of @code{ode45}:
+## @code{x} (row of times), @code{y} (one column per time),
+## @code{solver}, @code{xe}, @code{ye}, @code{ie} (with Events) and
+## @code{stats}.  With no output the solution is plotted with
+## @code{odeplot}.
 ##
 ## @strong{Options} (@code{odeset} fields, or @code{symplecticset} for the
 ## package's own fields without warnings; names match in any case):
@@ -103,10 +104,10 @@
 ## damping, a wrong Jacobian), finite differences serve for the rest of
 ## the run and the step is tried again; @code{stats.jacobian_source} then
 ## says from which t.  (At most three checks that agree are made in a
-## run: each costs a Jacobian and 2d+1 calls of @var{fcn}.)  Newton's stopping test measures its
-## corrections, so a matrix too large by many orders of magnitude makes
-## them tiny and can pass unconverged steps as converged: the results are
-## then wrong.
+## run: each costs a Jacobian and 2d+1 calls of @var{fcn}.)  Newton's
+## stopping test measures its corrections, so a matrix too large by many
+## orders of magnitude makes them tiny and can pass unconverged steps as
+## converged: the results are then wrong.
 ## @code{stats.jacobian_source} says which was used.  Sparse matrices
 ## (here, in the other options, in @var{tspan}, @var{y0} and in what
 ## @var{fcn} returns) are taken as full.
