@@ -2,6 +2,7 @@
    rhs calls per step, Jacobian sources, LU reuse, failure injection (rhs,
    Jacobian, allocator), bad input, reset. */
 #include "se_sv_systems.h"
+#include "test_spvi_systems.h"   /* ts_osc_jac */
 
 static const sym_stepper_type *
 stepper (int sv)
@@ -570,21 +571,6 @@ test_bad_input_and_reset (void)
     }
 }
 
-/* Df of the damped oscillator without the damping (the Hessian of H
-   alone: a forcing term's dF/dy is not in it) */
-static int
-jac_nodamp (double t, const double *y, double *df, void *user)
-{
-  (void) t;
-  (void) y;
-  (void) user;
-  df[0] = 0.0;
-  df[1] = -1.0;
-  df[2] = 1.0;
-  df[3] = 0.0;
-  return 0;
-}
-
 /* the output sink of test_jac_check: the last row */
 static int
 keep_last (double t, const double *y, void *user)
@@ -597,7 +583,8 @@ keep_last (double t, const double *y, void *user)
 /* A Newton failure with the user's Df checks it against finite
    differences: dropped when it disagrees (the run then goes on with
    finite differences, as it would have from the start), kept when it
-   agrees */
+   agrees.  The Df that misses the damping of P_DAMPED is the undamped
+   oscillator's, ts_osc_jac. */
 static void
 test_jac_check (void)
 {
@@ -609,7 +596,7 @@ test_jac_check (void)
   CHECK (sym_jac_check (&sys, 0.5, y, &dropped) == SYM_SUCCESS
          && dropped == 0 && sys.jac == tp_jac && ! sys.jac_dropped,
          "the exact Df is kept: %d", dropped);
-  sys.jac = jac_nodamp;
+  sys.jac = ts_osc_jac;
   CHECK (sym_jac_check (&sys, 0.5, y, &dropped) == SYM_SUCCESS
          && dropped == 1 && sys.jac == NULL && sys.jac_dropped
          && sys.jac_dropped_t == 0.5, "Df without the damping is dropped");
@@ -622,7 +609,7 @@ test_jac_check (void)
         {
           sys = tp_system (&P, P_DAMPED, 1);
           P.c = 100.0;
-          sys.jac = k ? jac_nodamp : NULL;
+          sys.jac = k ? ts_osc_jac : NULL;
           sym_method_opts mo = tp_opts (0, 0, 0);
           sym_driver_opts o;
           memset (&o, 0, sizeof o);
