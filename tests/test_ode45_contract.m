@@ -608,7 +608,19 @@
 %!     assert (y2, y1);
 %!     assert (y3, y1);
 %!   endfor
+%!   ## a command-line function of the file's name: a call by name finds it
+%!   ## first, a handle made to the file before calls the file
+%!   fh = @symtest_rhs;
+%!   eval ("function dy = symtest_rhs (t, y)\n  dy = [y(2); -9*y(1)];\nendfunction\n");
+%!   assert (fh (0, [1; 0]), [0; -4]);
+%!   for i = 1:3
+%!     [~, y1] = solvers{i} (fh, [0 1], [1; 0], o);
+%!     [~, y2] = solvers{i} ("symtest_rhs", [0 1], [1; 0], o);
+%!     assert (y1(end, :), [cos(2), -2*sin(2)], 4e-3);
+%!     assert (y2(end, :), [cos(3), -3*sin(3)], 1e-2);
+%!   endfor
 %! unwind_protect_cleanup
+%!   clear symtest_rhs
 %!   rmpath (d);
 %!   confirm_recursive_rmdir (false, "local");
 %!   rmdir (d, "s");

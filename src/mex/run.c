@@ -117,11 +117,11 @@ note_nonfinite (ctx_t *c, const double *v, size_t k, const char *what,
 
 /* ------------------------------------------------------------ calls */
 
-/* type and name of a function handle as functions () gives them; 0 if
-   that fails or they do not fit */
+/* type, name and file of a function handle as functions () gives them
+   (file may be NULL: not wanted); 0 if that fails or they do not fit */
 static int
 handle_info (const mxArray *f, char *type, size_t tlen, char *fn,
-             size_t flen)
+             size_t flen, char *file, size_t filelen)
 {
   mxArray *in[1] = { (mxArray *) f }, *out[1] = { NULL };
   mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "functions");
@@ -134,12 +134,41 @@ handle_info (const mxArray *f, char *type, size_t tlen, char *fn,
                       ? mxGetField (out[0], 0, "type") : NULL;
   const mxArray *nm = mxIsStruct (out[0])
                       ? mxGetField (out[0], 0, "function") : NULL;
+  const mxArray *fl = mxIsStruct (out[0])
+                      ? mxGetField (out[0], 0, "file") : NULL;
   int ok = ty && nm && mxIsChar (ty) && mxIsChar (nm)
            && mxGetNumberOfElements (ty) < tlen
            && mxGetNumberOfElements (nm) < flen
            && ! mxGetString (ty, type, tlen) && ! mxGetString (nm, fn, flen);
+  if (ok && file)
+    {
+      file[0] = '\0';
+      ok = ! fl || mxIsEmpty (fl)
+           || (mxIsChar (fl) && mxGetNumberOfElements (fl) < filelen
+               && ! mxGetString (fl, file, filelen));
+    }
   mxDestroyArray (out[0]);
   return ok;
+}
+
+/* Whether the name fn finds the file "file" (which (fn), as a call by
+   name finds it) */
+static int
+name_finds (const char *fn, const char *file)
+{
+  mxArray *in[1] = { mxCreateString (fn) }, *out[1] = { NULL };
+  mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "which");
+  mxDestroyArray (in[0]);
+  if (ex)
+    {
+      mxDestroyArray (ex);
+      return 0;
+    }
+  char *w = mxIsChar (out[0]) ? mxArrayToString (out[0]) : NULL;
+  int same = w && strcmp (w, file) == 0;
+  mxFree (w);
+  mxDestroyArray (out[0]);
+  return same;
 }
 
 /* The name f can be called by, or "" when f must go through feval.  A
@@ -152,12 +181,14 @@ handle_info (const mxArray *f, char *type, size_t tlen, char *fn,
    a handle made from its name in the caller's scope is simple too (no
    subfunction or private function of that name there), and all other
    handles (anonymous, to subfunctions, to private functions) through
-   feval. */
+   feval.  A simple handle bound to a file that the name does not find
+   (a command-line function of that name comes first for a call by name,
+   not for the handle) goes through feval too. */
 static void
 direct_name (const mxArray *f, char *name, size_t len)
 {
   name[0] = '\0';
-  char buf[64] = "", type[16] = "";
+  char buf[64] = "", type[16] = "", file[4096] = "";
   if (mxIsChar (f))
     {
       if (mxGetNumberOfElements (f) >= sizeof buf
@@ -165,7 +196,8 @@ direct_name (const mxArray *f, char *name, size_t len)
         return;
     }
   else if (! mxIsFunctionHandle (f)
-           || ! handle_info (f, type, sizeof type, buf, sizeof buf)
+           || ! handle_info (f, type, sizeof type, buf, sizeof buf, file,
+                             sizeof file)
            || strcmp (type, "simple") != 0)
     return;
   /* an identifier only (not "pkg.fcn", not an expression) */
@@ -186,10 +218,14 @@ direct_name (const mxArray *f, char *name, size_t len)
           return;
         }
       char fn2[64];
-      int same = handle_info (out[0], type, sizeof type, fn2, sizeof fn2)
+      int same = handle_info (out[0], type, sizeof type, fn2, sizeof fn2,
+                              NULL, 0)
                  && strcmp (type, "simple") == 0 && strcmp (fn2, buf) == 0;
       mxDestroyArray (out[0]);
-      if (! same)
+      /* a handle bound to a file that the name does not find (a file on
+         the path shadowed by a command-line function of the same name,
+         which a call by name finds first) */
+      if (! same || (file[0] && ! name_finds (buf, file)))
         return;
     }
   if (strlen (buf) < len)
