@@ -114,7 +114,10 @@
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
-## As in @code{ode45}.  Event times, output times and refined rows come
+## As in @code{ode45}.  A value that @code{OutputFcn} returns stops the
+## run when @code{if} would take it as true (all its elements nonzero; a
+## char too); NaN, and values other than logical, char or real numeric,
+## are errors.  Event times, output times and refined rows come
 ## from the dense output (cubic Hermite interpolation between steps, from
 ## @var{fcn} at the step points).  An event counts where its function
 ## changes sign (in the chosen direction) after t0: a zero at t0 itself is

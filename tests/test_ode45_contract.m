@@ -297,6 +297,43 @@
 %! CONTRACT_TSTOP = [];
 
 %!test
+%! ## the stop flag as "if" takes it: all elements nonzero stops (a char
+%! ## too), a zero or empty value goes on; NaN and other classes are errors
+%! f = @(t, y) [y(2); -y(1)];
+%! stops = {"yes", int8(2), [1 1], single(1), sparse(1)};
+%! goes = {[], [1 0], 0, false, int32(0), ""};
+%! for i = 1:3
+%!   for v = stops
+%!     o = symplecticset ("TimeStepSize", 0.1, "OutputFcn", @(t, y, fl) v{1});
+%!     warning ("off", "symplectic:output-stop", "local");
+%!     [t, y] = solvers{i} (f, [0 1], [1; 0], o);
+%!     assert (t, [0; 0.1], 1e-15);
+%!   endfor
+%!   for v = goes
+%!     o = symplecticset ("TimeStepSize", 0.1, "OutputFcn", @(t, y, fl) v{1});
+%!     [t, y] = solvers{i} (f, [0 1], [1; 0], o);
+%!     assert (numel (t), 11);
+%!   endfor
+%!   name = func2str (solvers{i});
+%!   bad = {NaN, [1 NaN], {1}, struct("a", 1), 1i, @sin};
+%!   for k = 1:numel (bad)
+%!     o = symplecticset ("TimeStepSize", 0.1, "OutputFcn", @(t, y, fl) bad{k});
+%!     msg = "";
+%!     try
+%!       [t, y] = solvers{i} (f, [0 1], [1; 0], o);
+%!     catch err
+%!       msg = err.message;
+%!     end_try_catch
+%!     if (k <= 2)
+%!       assert (msg, [name ": OutputFcn returned NaN as its stop flag at t = 0.10000000000000001"]);
+%!     else
+%!       pre = [name ": OutputFcn must return a logical or real numeric stop flag, got "];
+%!       assert (strncmp (msg, pre, numel (pre)));
+%!     endif
+%!   endfor
+%! endfor
+
+%!test
 %! ## OutputSel: only the selected components; extra parameters arrive
 %! global CONTRACT_LOG CONTRACT_TSTOP
 %! CONTRACT_TSTOP = [];

@@ -437,6 +437,48 @@ cb_events (double t, const double *y, double *value, int *isterminal,
   return 0;
 }
 
+/* OutputFcn's stop flag as `if (stop)` takes it (as ode45 does): true
+   when all its elements are nonzero, false when empty; NaN and values
+   that are not logical, char or real numeric are errors. */
+static int
+stop_flag (ctx_t *c, mxArray **pa, double t)
+{
+  mxArray *a = *pa;
+  char buf[64];
+  if (mxIsEmpty (a))
+    return 0;
+  if (mxIsSparse (a))
+    {
+      *pa = symmex_full (a);
+      mxDestroyArray (a);
+      a = *pa;
+    }
+  if (! (mxIsNumeric (a) || mxIsLogical (a) || mxIsChar (a))
+      || mxIsComplex (a))
+    mexErrMsgIdAndTxt (BADARG, "%s: OutputFcn must return a logical or "
+                       "real numeric stop flag, got %s at t = %.17g",
+                       c->solver, symmex_describe (a, buf, sizeof buf), t);
+  if (! mxIsDouble (a))
+    {
+      mxArray *out[1] = { NULL };
+      mexCallMATLAB (1, out, 1, pa, "double");
+      mxDestroyArray (a);
+      *pa = a = out[0];
+    }
+  const double *v = mxGetPr (a);
+  size_t k = mxGetNumberOfElements (a);
+  int stop = 1;
+  for (size_t i = 0; i < k; i++)
+    {
+      if (isnan (v[i]))
+        mexErrMsgIdAndTxt (BADARG, "%s: OutputFcn returned NaN as its stop "
+                           "flag at t = %.17g", c->solver, t);
+      if (v[i] == 0.0)
+        stop = 0;
+    }
+  return stop;
+}
+
 /* OutputFcn (t, y(OutputSel), flag, extras...): returns its stop flag. */
 static int
 call_outputfcn (ctx_t *c, const double *t, int nt, const double *y,
@@ -464,14 +506,7 @@ call_outputfcn (ctx_t *c, const double *t, int nt, const double *y,
   int nout = strcmp (flag, "") == 0 ? 1 : 0;
   mxArray *out[1] = { NULL };
   call_user (nout, out, c->nargs + 1, c->oargs, c->oname);
-  int stop = 0;
-  if (nout && out[0] && ! mxIsEmpty (out[0]))
-    {
-      if (mxIsLogical (out[0]))
-        stop = mxGetLogicals (out[0])[0] != 0;
-      else if (mxIsNumeric (out[0]))
-        stop = mxGetScalar (out[0]) != 0;
-    }
+  int stop = nout && out[0] ? stop_flag (c, out, t ? t[0] : NAN) : 0;
   if (out[0])
     mxDestroyArray (out[0]);
   mxDestroyArray (c->oargs[3]);
