@@ -67,7 +67,9 @@
 ## @table @code
 ## @item Nodes (alias P_DoFs), Q_DoFs, PolynomialDegree
 ## m (default 3), n (default m+1); @code{PolynomialDegree} sets
-## n = degree+1 (and m = degree+1 unless @code{Nodes} is given).
+## n = degree+1 (and m = degree+1 unless @code{Nodes} is given).  Two
+## names of one number (Nodes and P_DoFs; Q_DoFs and PolynomialDegree)
+## may both be given only with values that agree.
 ## @item TimeStepSize, TimeStepNumber
 ## Fixed step (the last step ends exactly on tf) or a fixed number of
 ## steps: no error control; the geometric guarantees hold in this mode.

@@ -36,7 +36,8 @@
 ## Default 3.  @code{P_DoFs} is accepted as an alias.
 ## @item PolynomialDegree
 ## @code{odeSPVI}: sets Q_DoFs = degree+1, and Nodes = degree+1 unless
-## Nodes is given.
+## Nodes is given.  Given together with Q_DoFs (or P_DoFs with Nodes) it
+## must agree with it: @code{odeSPVI} refuses a disagreement.
 ## @item HamiltonianHessFcn
 ## Handle @code{hess (t, y, @dots{})} returning the Hessian of H with
 ## respect to y = [q; p], as a 2d-by-2d matrix or its column-major vector.

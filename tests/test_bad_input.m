@@ -329,6 +329,15 @@
 %!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be between 1 and 40, got 0", f, [0 1], y0, struct ("PolynomialDegree", 0));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be an integer, got 2.5", f, [0 1], y0, struct ("PolynomialDegree", 2.5));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 5 with Nodes = 2 is a degenerate pair", f, [0 1], y0, struct ("PolynomialDegree", 4, "Nodes", 2));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Nodes = 5 and its alias P_DoFs = 2 disagree; give one of them", f, [0 1], y0, symplecticset ("Nodes", 5, "P_DoFs", 2));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 3 and PolynomialDegree = 5 \\(Q_DoFs = degree \\+ 1\\) disagree", f, [0 1], y0, struct ("PolynomialDegree", 5, "Q_DoFs", 3));
+%!test
+%! ## two names of one number that agree are taken
+%! o = symplecticset ("TimeStepSize", 0.1, "Nodes", 4, "P_DoFs", 4, "PolynomialDegree", 4, "Q_DoFs", 5);
+%! s = odeSPVI (@(t, y) [y(2); -y(1)], [0 1], [1; 0], o);
+%! assert ([s.Q_DoFs, s.Nodes], [5 4]);
+%! s = odeSPVI (@(t, y) [y(2); -y(1)], [0 1], [1; 0], struct ("TimeStepSize", 0.1, "PolynomialDegree", 5, "P_DoFs", 4));
+%! assert ([s.Q_DoFs, s.Nodes], [6 4]);
 
 ## ------------------------------------------------------------ good inputs of unusual types work
 %!test

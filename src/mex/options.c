@@ -338,21 +338,25 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
       const mxArray *vp = field (opts, "P_DoFs");
       const mxArray *vq = field (opts, "Q_DoFs");
       const mxArray *vd = field (opts, "PolynomialDegree");
-      if (vn)
-        o->nodes = (int) pos_integer (solver, vn, "Nodes", 1, 40);
-      else if (vp)
-        o->nodes = (int) pos_integer (solver, vp, "P_DoFs", 1, 40);
-      if (vq)
-        o->q_dofs = (int) pos_integer (solver, vq, "Q_DoFs", 2, 41);
+      /* two names of one number that disagree are refused rather than
+         one of them winning */
+      int pn = vn ? (int) pos_integer (solver, vn, "Nodes", 1, 40) : 0;
+      int pp = vp ? (int) pos_integer (solver, vp, "P_DoFs", 1, 40) : 0;
+      int pq = vq ? (int) pos_integer (solver, vq, "Q_DoFs", 2, 41) : 0;
+      int pd = vd ? 1 + (int) pos_integer (solver, vd, "PolynomialDegree",
+                                           1, 40) : 0;
+      if (vn && vp && pn != pp)
+        mexErrMsgIdAndTxt (BADARG, "%s: Nodes = %d and its alias P_DoFs = "
+                           "%d disagree; give one of them", solver, pn, pp);
+      if (vq && vd && pq != pd)
+        mexErrMsgIdAndTxt (BADARG, "%s: Q_DoFs = %d and PolynomialDegree = "
+                           "%d (Q_DoFs = degree + 1) disagree; give one of "
+                           "them", solver, pq, pd - 1);
+      if (vn || vp)
+        o->nodes = vn ? pn : pp;
       else if (vd)
-        {
-          o->q_dofs = 1 + (int) pos_integer (solver, vd, "PolynomialDegree",
-                                             1, 40);
-          if (! vn && ! vp)
-            o->nodes = o->q_dofs;
-        }
-      else
-        o->q_dofs = o->nodes + 1;
+        o->nodes = pd;
+      o->q_dofs = vq ? pq : vd ? pd : o->nodes + 1;
       if (o->q_dofs > 2 * o->nodes)
         mexErrMsgIdAndTxt (BADARG, "%s: Q_DoFs = %d with Nodes = %d is a "
                            "degenerate pair: the scheme does not converge "
