@@ -101,7 +101,8 @@
 ## iterations, not accuracy.  When Newton fails with the Jacobian or
 ## Hessian given and it differs from finite differences of @var{fcn} at
 ## the step's start by more than a tenth of their largest entry (a strong
-## damping, a wrong Jacobian), finite differences serve for the rest of
+## damping, a wrong Jacobian), or when it has a NaN or Inf where
+## @var{fcn} is finite, finite differences serve for the rest of
 ## the run and the step is tried again; @code{stats.jacobian_source} then
 ## says from which t.  (At most three checks that agree are made in a
 ## run: each costs a Jacobian and 2d+1 calls of @var{fcn}.)  Newton's

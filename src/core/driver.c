@@ -454,17 +454,19 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
          more after SYM_JAC_CHECKS checks that agreed (each costs a Df
          and 2d + 1 calls of f; adaptive runs fail Newton now and then
          with a right Df too: one check, 6 calls, in 10 Kepler periods at
-         RelTol 1e-4, tests/c/test_spvi.c). */
-      if (st == SYM_NEWTON_FAIL && (sys->jac || sys->rhs_jac)
+         RelTol 1e-4, tests/c/test_spvi.c).  The same when the user's Df
+         had a NaN or Inf (f finite), which no smaller step cures. */
+      if ((st == SYM_NEWTON_FAIL || (st == SYM_NONFINITE && sys->fail_df))
+          && (sys->jac || sys->rhs_jac)
           && jac_checked_at != sys->cnt.nsteps && jac_agreed < SYM_JAC_CHECKS)
         {
-          int dropped = 0;
+          int dropped = 0, st_step = st;
           jac_checked_at = sys->cnt.nsteps;
           st = sym_jac_check (sys, t, y, &dropped);
           /* a NaN or a smaller step asked for by the check's calls: the
              step's own failure stands */
           if (st > 0)
-            st = SYM_NEWTON_FAIL;
+            st = st_step;
           else if (! st && dropped)
             {
               type->free (r.state);
@@ -479,7 +481,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           else if (! st)
             {
               jac_agreed++;
-              st = SYM_NEWTON_FAIL;
+              st = st_step;
             }
         }
       if (st < 0)

@@ -97,6 +97,8 @@ typedef struct {
   sym_counters cnt;           /* kept by the core; zero it before a run */
   double fail_t;              /* t of the last failed callback (for messages) */
   int fail_status;            /* its status */
+  int fail_df;                /* SYM_NONFINITE in jac's or rhs_jac's Df
+                                 (f finite) */
   int jac_dropped;            /* jac/rhs_jac dropped by sym_jac_check */
   double jac_dropped_t;       /* at this t */
 } sym_system;
@@ -140,8 +142,10 @@ int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
    SYM_JAC_AGREE times the largest entry of either (a Hessian that misses
    a forcing term's dF/dy, or a wrong Jacobian), jac and rhs_jac are set
    to NULL, so that finite differences serve from then on, and
-   jac_dropped, jac_dropped_t and *dropped are set.  Returns a callback's
-   status (then nothing is dropped) or SYM_SUCCESS. */
+   jac_dropped, jac_dropped_t and *dropped are set; also when the user's
+   Df has a NaN or Inf where the differences are finite (a smaller step
+   cannot cure it).  Returns a callback's status (then nothing is
+   dropped) or SYM_SUCCESS. */
 int sym_jac_check (sym_system *sys, double t, const double *y,
                    int *dropped);
 

@@ -92,6 +92,16 @@ nonfinite_at (sym_system *sys, double t)
 {
   sys->fail_t = t;
   sys->fail_status = SYM_NONFINITE;
+  sys->fail_df = 0;
+  return SYM_NONFINITE;
+}
+
+/* The same, in the user's Df (f finite) */
+static int
+nonfinite_df_at (sym_system *sys, double t)
+{
+  nonfinite_at (sys, t);
+  sys->fail_df = 1;
   return SYM_NONFINITE;
 }
 
@@ -251,7 +261,7 @@ sym_jac (sym_system *sys, double t, const double *y, const double *f0,
   int st = callback_status (sys, t, sys->jac (t, y, df, sys->user));
   if (st)
     return st;
-  return all_finite (n * n, df) ? SYM_SUCCESS : nonfinite_at (sys, t);
+  return all_finite (n * n, df) ? SYM_SUCCESS : nonfinite_df_at (sys, t);
 }
 
 int
@@ -268,8 +278,9 @@ sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
   int st = callback_status (sys, t, sys->rhs_jac (t, y, dy, df, sys->user));
   if (st)
     return st;
-  return all_finite (n, dy) && all_finite (n * n, df)
-         ? SYM_SUCCESS : nonfinite_at (sys, t);
+  if (! all_finite (n, dy))
+    return nonfinite_at (sys, t);
+  return all_finite (n * n, df) ? SYM_SUCCESS : nonfinite_df_at (sys, t);
 }
 
 int
@@ -313,19 +324,21 @@ sym_jac_check (sym_system *sys, double t, const double *y, int *dropped)
   sym_rhs_jac_fn rhs_jac = sys->rhs_jac;
   int st = rhs_jac ? sym_rhs_jac (sys, t, y, f, du)
                    : sym_jac (sys, t, y, NULL, du);
-  if (! st)
+  /* a NaN or Inf in Df alone (f finite) */
+  int bad_du = st == SYM_NONFINITE && sys->fail_df;
+  if (! st || bad_du)
     {
       /* f(t, y) came with the Hessian, else jac_fd evaluates it */
       sys->jac = NULL;
       sys->rhs_jac = NULL;
       st = jac_fd (sys, t, y, rhs_jac ? f : NULL, dfd);
       double big = 0.0, dif = 0.0;
-      for (size_t i = 0; ! st && i < n * n; i++)
+      for (size_t i = 0; ! st && ! bad_du && i < n * n; i++)
         {
           big = fmax (big, fmax (fabs (du[i]), fabs (dfd[i])));
           dif = fmax (dif, fabs (du[i] - dfd[i]));
         }
-      *dropped = ! st && dif > SYM_JAC_AGREE * big;
+      *dropped = ! st && (bad_du || dif > SYM_JAC_AGREE * big);
       if (*dropped)
         {
           sys->jac_dropped = 1;

@@ -580,11 +580,21 @@ keep_last (double t, const double *y, void *user)
   return 0;
 }
 
+/* A Df with a NaN where f is finite (a Hessian undefined there) */
+static int
+nan_jac (double t, const double *y, double *df, void *user)
+{
+  tp_jac (t, y, df, user);
+  df[1] = NAN;
+  return 0;
+}
+
 /* A Newton failure with the user's Df checks it against finite
    differences: dropped when it disagrees (the run then goes on with
    finite differences, as it would have from the start), kept when it
    agrees.  The Df that misses the damping of P_DAMPED is the undamped
-   oscillator's, ts_osc_jac. */
+   oscillator's, ts_osc_jac.  A Df with a NaN (f finite) is dropped too:
+   before, the step shrank to nothing. */
 static void
 test_jac_check (void)
 {
@@ -600,16 +610,21 @@ test_jac_check (void)
   CHECK (sym_jac_check (&sys, 0.5, y, &dropped) == SYM_SUCCESS
          && dropped == 1 && sys.jac == NULL && sys.jac_dropped
          && sys.jac_dropped_t == 0.5, "Df without the damping is dropped");
+  sys = tp_system (&P, P_DAMPED, 1);
+  sys.jac = nan_jac;
+  CHECK (sym_jac_check (&sys, 0.5, y, &dropped) == SYM_SUCCESS
+         && dropped == 1 && sys.jac == NULL && sys.jac_dropped,
+         "a Df with a NaN is dropped: %d", dropped);
 
   for (int sv = 0; sv < 2; sv++)
     {
-      double yend[2][2];
-      int dropped_run[2];
-      for (int k = 0; k < 2; k++)
+      double yend[3][2];
+      int dropped_run[3];
+      for (int k = 0; k < 3; k++)
         {
           sys = tp_system (&P, P_DAMPED, 1);
           P.c = 100.0;
-          sys.jac = k ? ts_osc_jac : NULL;
+          sys.jac = k == 2 ? nan_jac : k ? ts_osc_jac : NULL;
           sym_method_opts mo = tp_opts (0, 0, 0);
           sym_driver_opts o;
           memset (&o, 0, sizeof o);
@@ -622,14 +637,17 @@ test_jac_check (void)
           double y0[2] = { 1.0, 0.0 }, tr = 0.0;
           int st = sym_integrate (stepper (sv), &sys, &mo, &o, y0, &tr);
           CHECK (st == SYM_DONE && tr == 2.0, "%s, c = 100, %s: %s at t = "
-                 "%g", mname (sv), k ? "Df without damping" : "finite "
-                 "differences", sym_status_name (st), tr);
+                 "%g", mname (sv), k == 2 ? "Df with a NaN"
+                 : k ? "Df without damping" : "finite differences",
+                 sym_status_name (st), tr);
           dropped_run[k] = sys.jac_dropped;
         }
-      CHECK (! dropped_run[0] && dropped_run[1]
-             && maxdiff (2, yend[0], yend[1]) < 1e-12,
-             "%s: Df dropped %d %d, difference %g", mname (sv),
-             dropped_run[0], dropped_run[1], maxdiff (2, yend[0], yend[1]));
+      CHECK (! dropped_run[0] && dropped_run[1] && dropped_run[2]
+             && maxdiff (2, yend[0], yend[1]) < 1e-12
+             && maxdiff (2, yend[0], yend[2]) < 1e-12,
+             "%s: Df dropped %d %d %d, differences %g %g", mname (sv),
+             dropped_run[0], dropped_run[1], dropped_run[2],
+             maxdiff (2, yend[0], yend[1]), maxdiff (2, yend[0], yend[2]));
     }
 }
 
