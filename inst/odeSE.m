@@ -121,8 +121,10 @@
 ## are errors.  Event times, output times and refined rows come
 ## from the dense output (cubic Hermite interpolation between steps, from
 ## @var{fcn} at the step points).  An event counts where its function
-## changes sign (in the chosen direction) after t0: a zero at t0 itself is
-## not reported.  Events located at the time of a terminal event (within
+## changes sign or becomes zero (in the chosen direction) after t0: a zero
+## at t0 itself is not reported, a zero that touches without a change of
+## sign only when it falls on a step point.  An Events function whose
+## VALUE is empty at t0 gives no events.  Events located at the time of a terminal event (within
 ## the round-off of their location) are reported with it.  @code{Refine}
 ## (default 1: step points only, where the method's properties hold) adds
 ## interpolated rows between steps; as in @code{ode45} it is ignored with

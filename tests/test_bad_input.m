@@ -301,7 +301,17 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must be a function handle .*got 1x1 cell", f, [0 1], y0, struct ("OutputFcn", {{@odeplot}}));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return three outputs \\[VALUE, ISTERMINAL, DIRECTION\\], got 1", f, [0 1], y0, struct ("Events", @(t, y) y(1)));
 %!test check_bad (all3, "Octave:invalid-fun-call", "^bi_events1: function called with too many outputs", f, [0 1], y0, struct ("Events", @bi_events1));
-%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return \\[VALUE, ISTERMINAL, DIRECTION\\] with a non-empty real VALUE, got VALUE = 0x0 double", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "empty")));
+%!test
+%! ## an empty VALUE at t0: no events, as in ode45
+%! for s = all3
+%!   o = struct ("Events", @(t, y) bi_events (t, y, "empty"), "TimeStepSize", 0.1);
+%!   [t, y, te, ye, ie] = s{1} (f, [0 1], y0, o);
+%!   assert (numel (t), 11);
+%!   assert (isempty (te) && isempty (ye) && isempty (ie));
+%!   sol = s{1} (f, [0 1], y0, o);
+%!   assert (isempty (sol.xe) && isempty (sol.ie));
+%! endfor
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return \\[VALUE, ISTERMINAL, DIRECTION\\] with a real VALUE, got VALUE = 1x1 cell", f, [0 1], y0, struct ("Events", @(t, y) deal ({1}, 0, 0)));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return .*got VALUE = 1x1 complex double", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "complex")));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return .*got VALUE = 1x1 char", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "char")));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return ISTERMINAL and DIRECTION of the size of VALUE, got 1x3 double at t = 0", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "term")));

@@ -853,11 +853,12 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
         mexErrMsgIdAndTxt (BADARG, "%s: the Events function must return "
                            "three outputs [VALUE, ISTERMINAL, DIRECTION], "
                            "got %d", name, eo[0] ? (eo[1] ? 2 : 1) : 0);
+      /* an empty VALUE: no events (as in ode45) */
       if (! eo[0] || ! (mxIsNumeric (eo[0]) || mxIsLogical (eo[0]))
-          || mxIsEmpty (eo[0]) || mxIsComplex (eo[0]))
+          || mxIsComplex (eo[0]))
         mexErrMsgIdAndTxt (BADARG, "%s: the Events function must return "
-                           "[VALUE, ISTERMINAL, DIRECTION] with a non-empty "
-                           "real VALUE, got VALUE = %s", name,
+                           "[VALUE, ISTERMINAL, DIRECTION] with a real "
+                           "VALUE, got VALUE = %s", name,
                            eo[0] ? symmex_describe (eo[0], buf, sizeof buf)
                            : "nothing");
       c->nevents = (int) mxGetNumberOfElements (eo[0]);
@@ -935,7 +936,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   dopt.hmax = o.hmax;
   dopt.max_steps = o.max_steps;
   dopt.nevents = c->nevents;
-  dopt.events = o.events ? cb_events : NULL;
+  dopt.events = c->nevents > 0 ? cb_events : NULL;
   dopt.event_user = c;
   dopt.event_out = sink_event;
   dopt.output = sink_row;
