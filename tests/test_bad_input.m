@@ -180,6 +180,7 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x1 struct", f, [0 1], struct ("q", 1));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be real, got a complex value", f, [0 1], sparse ([1i 0]));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 2x2 double", f, [0 1], eye (2));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be a non-empty real numeric vector .*got 1x1x2 double", f, [0 1], ones (1, 1, 2));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be finite, element 1 is nan", f, [0 1], [NaN 0]);
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be finite, element 2 is inf", f, [0 1], [0 Inf]);
 %!test check_bad (all3, "Octave:invalid-input-arg", "Y0 must be finite, element 4 is -inf", f, [0 1], [0 0 0 -Inf]);
@@ -291,7 +292,7 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold indices between 1 and 2, got 1.5", f, [0 1], y0, struct ("OutputSel", 1.5));
 %!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold indices between 1 and 2, got 5", f, [0 1], y0, struct ("OutputSel", 5));
 %!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must be a vector of indices into Y0, got 1x1 cell", f, [0 1], y0, struct ("OutputSel", {{1}}));
-%!test check_bad (all3, "Octave:invalid-input-arg", "a logical OutputSel must have 2 elements", f, [0 1], y0, struct ("OutputSel", true));
+%!test check_bad (all3, "Octave:invalid-input-arg", "a logical OutputSel must have 2 elements \\(one per element of Y0\\), got 1$", f, [0 1], y0, struct ("OutputSel", true));
 
 ## ------------------------------------------------------------ Events and OutputFcn
 %!test check_bad (all3, "Octave:invalid-input-arg", "Events must be a function handle or the name of a function, got 1x1 double", f, [0 1], y0, struct ("Events", 3));

@@ -48,9 +48,22 @@ is_real_numeric (const mxArray *v)
 const char *
 symmex_describe (const mxArray *v, char *buf, size_t len)
 {
-  snprintf (buf, len, "%dx%d %s%s%s", (int) mxGetM (v), (int) mxGetN (v),
-            mxIsSparse (v) ? "sparse " : "",
-            mxIsComplex (v) ? "complex " : "", mxGetClassName (v));
+  /* the dimensions as size () gives them, then the class */
+  const mwSize *dims = mxGetDimensions (v);
+  mwSize nd = mxGetNumberOfDimensions (v);
+  size_t k = 0;
+  buf[0] = '\0';
+  for (mwSize i = 0; i < nd && k < len; i++)
+    {
+      int w = snprintf (buf + k, len - k, "%s%lu", i ? "x" : "",
+                        (unsigned long) dims[i]);
+      if (w < 0)
+        break;
+      k += (size_t) w;
+    }
+  if (k < len)
+    snprintf (buf + k, len - k, " %s%s%s", mxIsSparse (v) ? "sparse " : "",
+              mxIsComplex (v) ? "complex " : "", mxGetClassName (v));
   return buf;
 }
 
@@ -249,7 +262,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
         {
           if (k != (size_t) n)
             mexErrMsgIdAndTxt (BADARG, "%s: a logical OutputSel must have "
-                               "%d elements", solver, n);
+                               "%d elements (one per element of Y0), got "
+                               "%d", solver, n, (int) k);
           for (size_t i = 0; i < k; i++)
             if (mxGetLogicals (v)[i])
               o->outputsel[o->noutputsel++] = (int) i;

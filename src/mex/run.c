@@ -679,6 +679,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   /* Y0 */
   const mxArray *y0a = symmex_full (prhs[2]);
   if (! is_plain_numeric (y0a) || mxIsEmpty (y0a)
+      || mxGetNumberOfDimensions (y0a) != 2
       || (mxGetM (y0a) != 1 && mxGetN (y0a) != 1))
     {
       if (mxIsComplex (y0a))
