@@ -80,6 +80,9 @@ function status = memcheck_run ()
     sol = s (@(t, y) [y(2); -y(1) - 100 * y(2)], [0 0.1], [1 0], ...
              struct ("TimeStepSize", 0.01, "HamiltonianHessFcn", @(t, y) eye (2)));
     nbad += check (sol.x(end) == 0.1 && ! isempty (strfind (sol.stats.jacobian_source, "then finite")), name, "Hessian dropped");
+    ## and a Hessian with a NaN
+    sol = s (osc, [0 0.1], [1 0], struct ("TimeStepSize", 0.01, "HamiltonianHessFcn", @(t, y) [NaN 0; 0 1]));
+    nbad += check (sol.x(end) == 0.1 && ! isempty (strfind (sol.stats.jacobian_source, "then finite")), name, "NaN Hessian dropped");
     ## events, OutputFcn, OutputSel, Stats
     ev = @(t, y) deal ([y(1); y(2)], [0; 1], [0; -1]);
     [t, y, te, ye, ie] = s (osc, [0 8], [1 0], struct ("Events", ev));
@@ -92,6 +95,11 @@ function status = memcheck_run ()
     [t, y] = s (osc, [0 1], [1 0], struct ("OutputFcn", out, "OutputSel", 2));
     [t, y] = s (osc, [0 1], [1 0], struct ("OutputFcn", @(t, y, flag) ! isempty (t) && t(end) > 0.5));
     nbad += check (t(end) < 1, name, "OutputFcn stop");
+    [t, y] = s (osc, [0 1], [1 0], struct ("OutputFcn", @(t, y, flag) "yes"));
+    nbad += check (t(end) < 1, name, "OutputFcn stop, char");
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("OutputFcn", @(t, y, flag) {1}));
+    [t, y, te] = s (osc, [0 1], [1 0], struct ("Events", @(t, y) deal ([], 0, 0)));
+    nbad += check (t(end) == 1 && isempty (te), name, "empty event VALUE");
     evalc ("[t, y] = s (osc, [0 1], [1 0], struct ('Stats', 'on'));");
     ## extra parameters
     [t, y] = s (@(t, y, a, b) a * [y(2); -y(1)] + b, [0 1], [1 0], [], 1, 0);
