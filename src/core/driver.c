@@ -241,16 +241,19 @@ hmin_at (double t)
   return fmax (16 * DBL_EPSILON * fabs (t), DBL_MIN);
 }
 
-/* Map a recoverable cause that can no longer be cured to a fatal status. */
+/* Map a recoverable cause that can no longer be cured to a fatal status.
+   small_step: the step that failed was the least one (adaptive runs); a
+   callback's request for a smaller step is otherwise (fixed steps, the
+   first call at t0) a callback failure. */
 static int
-fatal_from (int cause)
+fatal_from (int cause, int small_step)
 {
   switch (cause)
     {
     case SYM_NONFINITE: return SYM_ENONFINITE;
     case SYM_NEWTON_FAIL:
     case SYM_SINGULAR: return SYM_ENEWTON;
-    default: return SYM_ESTEPSIZE;
+    default: return small_step ? SYM_ESTEPSIZE : SYM_ECALLBACK;
     }
 }
 
@@ -273,8 +276,17 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
     return SYM_EBADINPUT;
   r.dir = o->tf > o->t0 ? 1.0 : -1.0;
   const int fixed = o->h_fixed > 0 || o->nsteps_fixed > 0;
-  if (! fixed && (! (o->rtol > 0) || ! o->atol || o->atol_len < 1))
+  /* a fixed step of more steps than a long counts (and than doubles
+     count exactly) */
+  if (o->nsteps_fixed <= 0 && o->h_fixed > 0
+      && ! (fabs (o->tf - o->t0) / o->h_fixed <= SYM_MAX_FIXED_STEPS))
     return SYM_EBADINPUT;
+  if (! fixed && (! (o->rtol > 0) || ! o->atol
+                  || (o->atol_len != 1 && o->atol_len != n)))
+    return SYM_EBADINPUT;
+  for (int i = 0; ! fixed && i < o->atol_len; i++)
+    if (! (o->atol[i] > 0) || ! isfinite (o->atol[i]))
+      return SYM_EBADINPUT;
   if (o->ntout > 2 && (! o->tout || o->tout[0] != o->t0))
     return SYM_EBADINPUT;
 
@@ -374,7 +386,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           st = sym_rhs (sys, t, y, f0);
           if (st)
             {
-              result = st < 0 ? st : fatal_from (st);
+              result = st < 0 ? st : fatal_from (st, 0);
               goto done;
             }
           st = sym_initial_step (sys, t, y, f0, r.dir, q, o->rtol, o->atol,
@@ -498,7 +510,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           sys->cnt.nfailed++;
           if (fixed)
             {
-              result = fatal_from (st > 0 ? st : SYM_NONFINITE);
+              result = fatal_from (st > 0 ? st : SYM_NONFINITE, 0);
               goto done;
             }
           double fac = st > 0 ? 0.5 : sym_step_factor (err, q, 0.2, 1.0);
@@ -508,7 +520,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           /* failed at the least step: nothing smaller can be tried */
           if (h <= hmin_at (t))
             {
-              result = st > 0 ? fatal_from (st) : SYM_ESTEPSIZE;
+              result = st > 0 ? fatal_from (st, 1) : SYM_ESTEPSIZE;
               goto done;
             }
           h *= fac;

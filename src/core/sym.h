@@ -32,7 +32,9 @@ enum {
   /* < 0: fatal */
   SYM_EBADINPUT = -1,      /* invalid argument to a core function */
   SYM_ENOMEM = -2,         /* allocation failed */
-  SYM_ECALLBACK = -3,      /* a callback returned a fatal status */
+  SYM_ECALLBACK = -3,      /* a callback returned a fatal status, or asked
+                              for a smaller step where there is none (a
+                              fixed step, the first call at t0) */
   SYM_ESTEPSIZE = -4,      /* step size fell below the round-off limit */
   SYM_ENEWTON = -5,        /* Newton failed and the step cannot shrink */
   SYM_ENONFINITE = -6,     /* non-finite values that a smaller step cannot cure */
@@ -277,6 +279,10 @@ typedef int (*sym_output_fn) (double t, const double *y, void *user);
 typedef int (*sym_eventout_fn) (double te, const double *ye, int ie,
                                 void *user);
 
+/* The most steps a fixed TimeStepSize may need (doubles count them
+   exactly; the Octave layer refuses more than 1e12) */
+#define SYM_MAX_FIXED_STEPS 1e15
+
 typedef struct {
   double t0, tf;
   /* output times (strictly monotonic, tout[0] = t0): when ntout > 2 rows go
@@ -286,12 +292,14 @@ typedef struct {
   int refine;          /* ntout <= 2: rows per step (1: step points only) */
   /* fixed step: h_fixed > 0 (sign taken from tf - t0); nsteps_fixed > 0
      takes exactly that many steps, else steps to tf with the last one
-     shortened to end on tf */
+     shortened to end on tf (at most SYM_MAX_FIXED_STEPS of them, else
+     SYM_EBADINPUT) */
   double h_fixed;
   long nsteps_fixed;
   /* adaptive */
   double rtol;
-  const double *atol;  /* atol_len = 1 or n */
+  const double *atol;  /* atol_len = 1 or n, each > 0 and finite (else
+                          SYM_EBADINPUT) */
   int atol_len;
   int norm_control;
   double h0;           /* 0: automatic */

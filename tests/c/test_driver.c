@@ -17,6 +17,8 @@
 typedef struct {
   double nan_after;   /* rhs returns NaN for t > nan_after */
   long fatal_at;      /* rhs returns -1 on this call number (0: never) */
+  long smaller_from;  /* rhs returns 1 (asks for a smaller step) from this
+                         call number on (0: never) */
   long calls;
 } ho_user;
 
@@ -27,6 +29,8 @@ ho_rhs (double t, const double *y, double *dy, void *u)
   hu->calls++;
   if (hu->fatal_at && hu->calls == hu->fatal_at)
     return -1;
+  if (hu->smaller_from && hu->calls >= hu->smaller_from)
+    return 1;
   dy[0] = y[1];
   dy[1] = -y[0];
   if (t > hu->nan_after)
@@ -576,6 +580,39 @@ main (void)
   o.rtol = 0;
   CHECK (sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr)
          == SYM_EBADINPUT, "rtol 0 refused");
+  /* an AbsTol of another length than 1 or n (read past its end before),
+     or not positive */
+  {
+    const double atol2[2] = { 1e-6, 0.0 };
+    setup (&sys, &hu, &o, atol2);
+    sys.dim = 2;
+    o.atol_len = 3;
+    CHECK (sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr)
+           == SYM_EBADINPUT, "atol_len 3 with n = 4 refused");
+    setup (&sys, &hu, &o, atol2);
+    o.atol_len = 2;
+    CHECK (sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr)
+           == SYM_EBADINPUT, "an AbsTol of 0 refused");
+  }
+  /* a fixed step of more steps than a long holds: refused (the count
+     overflowed to one step over the whole span) */
+  setup (&sys, &hu, &o, &atol);
+  o.h_fixed = 1e-300;
+  CHECK (sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr)
+         == SYM_EBADINPUT && S.nrows == 0, "h_fixed 1e-300 refused: %d "
+         "rows", S.nrows);
+  /* a callback that asks for a smaller step where there is none: a
+     callback failure, not a step size that fell below round-off */
+  for (int k = 0; k < 2; k++)
+    {
+      setup (&sys, &hu, &o, &atol);
+      o.h_fixed = k ? 0.1 : 0.0;
+      hu.smaller_from = k ? 10 : 1;
+      st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
+      CHECK (st == SYM_ECALLBACK, "%s: a callback asking for a smaller "
+             "step: %s", k ? "fixed step" : "adaptive, at t0",
+             sym_status_name (st));
+    }
 
   /* predictive step-size control (control.c).  A model error that grows
      along the run by g per step at a fixed h: err_n = c g^n h_n^(q+1).
