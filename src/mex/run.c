@@ -458,6 +458,15 @@ stop_flag (ctx_t *c, mxArray **pa, double t)
     mexErrMsgIdAndTxt (BADARG, "%s: OutputFcn must return a logical or "
                        "real numeric stop flag, got %s at t = %.17g",
                        c->solver, symmex_describe (a, buf, sizeof buf), t);
+  size_t k = mxGetNumberOfElements (a);
+  /* logical (the usual false) and char without a call of double () */
+  if (mxIsLogical (a) || mxIsChar (a))
+    {
+      for (size_t i = 0; i < k; i++)
+        if (mxIsLogical (a) ? ! mxGetLogicals (a)[i] : ! mxGetChars (a)[i])
+          return 0;
+      return 1;
+    }
   if (! mxIsDouble (a))
     {
       mxArray *out[1] = { NULL };
@@ -466,7 +475,6 @@ stop_flag (ctx_t *c, mxArray **pa, double t)
       *pa = a = out[0];
     }
   const double *v = mxGetPr (a);
-  size_t k = mxGetNumberOfElements (a);
   int stop = 1;
   for (size_t i = 0; i < k; i++)
     {
