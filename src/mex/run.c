@@ -428,8 +428,12 @@ cb_events (double t, const double *y, double *value, int *isterminal,
           double x = w[ne == 1 ? 0 : i];
           if (k == 1)
             isterminal[i] = x != 0;
+          else if (x == 1.0 || x == -1.0 || x == 0.0)
+            direction[i] = (int) x;
           else
-            direction[i] = x > 0 ? 1 : (x < 0 ? -1 : 0);
+            mexErrMsgIdAndTxt (BADARG, "%s: the Events function must "
+                               "return DIRECTION of -1, 0 or 1, got %g at "
+                               "t = %.17g", c->solver, x, t);
         }
     }
   for (int k = 0; k < 3; k++)
