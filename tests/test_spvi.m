@@ -350,6 +350,26 @@
 ## ----------------------------------------------------------------- bad pairs
 %!error <degenerate pair> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 3, "Nodes", 1))
 %!error <degenerate pair> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 5, "Nodes", 2))
+
+%!test
+%! ## the pairs n - 1 > m are degenerate where d2H/dq2 vanishes: on free
+%! ## fall Newton fails at t0 whatever the step, and the warning says why;
+%! ## (4,3) is exact there
+%! f = @(t, y) [y(2); -1];
+%! for pr = [4 2; 5 3; 6 4]'
+%!   for h = [0.1 0.01]
+%!     o = symplecticset ("TimeStepSize", h, "Q_DoFs", pr(1), "Nodes", pr(2));
+%!     lastwarn ("");
+%!     evalc ("[t, y] = odeSPVI (f, [0 1], [0; 1], o);");
+%!     [msg, id] = lastwarn ();
+%!     assert (id, "symplectic:newton-failed");
+%!     assert (t, 0);
+%!     assert (! isempty (strfind (msg, "Q_DoFs - 1 > Nodes: such pairs are degenerate where d2H/dq2 vanishes")));
+%!     assert (isempty (strfind (msg, "try a smaller")));
+%!   endfor
+%! endfor
+%! [t, y] = odeSPVI (f, [0 1], [0; 1], symplecticset ("TimeStepSize", 0.1));
+%! assert (y(end, :), [0.5, 0], 1e-14);
 %!error <Q_DoFs must be between 2> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Q_DoFs", 1))
 %!error <Nodes must be between 1> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Nodes", 0))
 %!error <Nodes must be an integer> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Nodes", 2.5))

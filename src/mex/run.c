@@ -980,12 +980,21 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
         if (c->nonfinite_what && strcmp (c->nonfinite_what, "FCN") != 0)
           snprintf (why, sizeof why, " (%s returned NaN or Inf at "
                     "t = %.17g)", c->nonfinite_what, c->nonfinite_t);
+        /* odeSPVI's pairs n - 1 > m: their extra modes of q are fixed
+           only by d2H/dq2 (singular Newton matrices where it vanishes,
+           whatever the step) */
+        int degenerate = o.q_dofs - 1 > o.nodes && o.q_dofs > 0 && ! why[0];
+        if (degenerate)
+          snprintf (why, sizeof why, " (Q_DoFs - 1 > Nodes: such pairs "
+                    "are degenerate where d2H/dq2 vanishes or is small; "
+                    "Q_DoFs <= Nodes + 1 is not)");
         mexWarnMsgIdAndTxt ("symplectic:newton-failed", "%s: Newton's "
                             "method did not converge at t = %.17g %s%s; "
                             "returning the solution up to t = %.17g", name,
                             treached, (o.h_fixed > 0 || o.nsteps_fixed > 0)
-                            ? "with the fixed step (try a smaller "
-                              "TimeStepSize)"
+                            ? (degenerate ? "with the fixed step"
+                               : "with the fixed step (try a smaller "
+                                 "TimeStepSize)")
                             : "even with the smallest step", why, tlast);
       }
       break;
