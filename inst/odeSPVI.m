@@ -107,7 +107,9 @@
 ## Jacobians of the same step (no call of @var{fcn}), the runs make
 ## 3635 4750 8005 13330 24879 evaluations of f and of its Jacobian (each
 ## counted once, as separate callbacks; with the Hessian as second output
-## of @var{fcn} that is nfevals + 2*npds) at RelTol 1e-4 to 1e-12, against
+## of @var{fcn} that is nfevals + 2*npds; these are the C tests' counts,
+## and the same runs from Octave count one more) at RelTol 1e-4 to 1e-12,
+## against
 ## 4765 6876 10763 14356 24398 before both: 7-31% fewer down to 1e-10, 2%
 ## more at 1e-12.
 ## @item Jacobian, HamiltonianHessFcn
@@ -142,7 +144,7 @@
 ## are kept across steps while Newton converges fast; between
 ## evaluations the node Jacobians are extrapolated in time.  Two
 ## corrections per step are typical (2.37 on Kepler, (4,3), h = 2*pi/100:
-## 7.11 calls of @var{fcn} and 0.58 Hessian calls per step).
+## 7.11 calls of @var{fcn} and 0.57 Hessian calls per step).
 ## @qcode{"new"}: a new matrix at every step's predicted start, whose
 ## first correction is then exact Newton; the step stops after it when
 ## its quadratic error, estimated from earlier steps, is far below
