@@ -109,9 +109,8 @@
 ## counted once, as separate callbacks; with the Hessian as second output
 ## of @var{fcn} that is nfevals + 2*npds; these are the C tests' counts,
 ## and the same runs from Octave count one more) at RelTol 1e-4 to 1e-12,
-## against
-## 4765 6876 10763 14356 24398 before both: 7-31% fewer down to 1e-10, 2%
-## more at 1e-12.
+## against 4765 6876 10763 14356 24398 before both: 7-31% fewer down to
+## 1e-10, 2% more at 1e-12.
 ## @item Jacobian, HamiltonianHessFcn
 ## Newton's matrix needs df/dy = J * Hess(H) at the nodes, from the first
 ## of: the @code{Jacobian} option (matrix or handle returning df/dy);
