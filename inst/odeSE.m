@@ -126,8 +126,9 @@
 ## sign only when it falls on a step point.  An Events function whose
 ## VALUE is empty at t0 gives no events; its DIRECTION must hold -1, 0
 ## or 1 (other values, which @code{ode45} takes as a direction that never
-## occurs, are errors).  Events located at the time of a terminal event (within
-## the round-off of their location) are reported with it.  @code{Refine}
+## occurs, are errors).  Events located at the time of a terminal event
+## (within the round-off of their location) are reported with it.
+## @code{Refine}
 ## (default 1: step points only, where the method's properties hold) adds
 ## interpolated rows between steps; as in @code{ode45} it is ignored with
 ## more than two @var{tspan} elements and for the @var{sol} output.

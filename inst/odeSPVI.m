@@ -61,8 +61,8 @@
 ## and are degenerate: their extra modes of q are fixed only by the
 ## curvature d2H/dq2.  Where it vanishes (a free particle, a constant
 ## force) Newton's matrix is singular and the run stops at t0 whatever
-## the step; where it is small (a pendulum near q = pi/2) their local
-## error grows by a factor of 10-100 and Newton may fail at some steps.
+## the step (tests/test_spvi.m); where it is small (a pendulum near
+## q = pi/2) their local error grows and Newton may fail at some steps.
 ## (4,2) reaches its order on a pendulum from q = 1 (tests/test_spvi.m);
 ## use n <= m+1 otherwise.
 ## @code{sol.order} gives the order actually used (see RelTol below for
