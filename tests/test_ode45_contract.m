@@ -126,6 +126,18 @@
 
 ## ------------------------------------------------------------ events
 %!test
+%! ## a zero that touches without a change of sign counts only on a step
+%! ## point (as the help says)
+%! f = @(t, y) [y(2); -y(1)];
+%! ev = @(t, y) deal ((t - 0.5)^2, 0, 0);
+%! for i = 1:3
+%!   [~, ~, te] = solvers{i} (f, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "Events", ev));
+%!   assert (te, 0.5);
+%!   [~, ~, te] = solvers{i} (f, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.3, "Events", ev));
+%!   assert (isempty (te));
+%! endfor
+
+%!test
 %! ## harmonic oscillator, q = 0 at pi/2 + k pi: odeSPVI to 1e-10
 %! f = @(t, y) [y(2); -y(1)];
 %! texact = pi/2 + (0:2)' * pi;
