@@ -57,20 +57,50 @@ col (int n)
   return mxCreateDoubleMatrix (n, 1, mxREAL);
 }
 
+/* a's double form (a new array) */
+static mxArray *
+to_double (const mxArray *a)
+{
+  mxArray *in[1] = { (mxArray *) a }, *out[1] = { NULL };
+  mexCallMATLAB (1, out, 1, in, "double");
+  return out[0];
+}
+
+/* A value returned by a user's function, replaced in *pa by its full
+   form (sparse values are taken as full), or by its double form (a
+   numeric, logical or char value); the replaced array is destroyed. */
+static mxArray *
+take_full (mxArray **pa)
+{
+  mxArray *a = *pa;
+  if (a && mxIsSparse (a))
+    {
+      *pa = symmex_full (a);
+      mxDestroyArray (a);
+    }
+  return *pa;
+}
+
+static mxArray *
+take_double (mxArray **pa)
+{
+  mxArray *a = *pa;
+  if (! mxIsDouble (a))
+    {
+      *pa = to_double (a);
+      mxDestroyArray (a);
+    }
+  return *pa;
+}
+
 /* Check a value returned by a user's function: real numeric with k
    elements; convert it to double if needed.  Returns a double array. */
 static const double *
 checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
                 double t, const char *expect_fmt, ...)
 {
-  mxArray *a = *pa;
+  mxArray *a = take_full (pa);
   char buf[64];
-  if (a && mxIsSparse (a))
-    {
-      *pa = symmex_full (a);
-      mxDestroyArray (a);
-      a = *pa;
-    }
   if (! a || ! (mxIsNumeric (a) || mxIsLogical (a)) || mxIsComplex (a)
       || mxGetNumberOfElements (a) != k)
     {
@@ -89,14 +119,7 @@ checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
                          a ? symmex_describe (a, buf, sizeof buf)
                          : "nothing", t);
     }
-  if (! mxIsDouble (a))
-    {
-      mxArray *out[1] = { NULL };
-      mexCallMATLAB (1, out, 1, pa, "double");
-      mxDestroyArray (a);
-      *pa = out[0];
-    }
-  return mxGetPr (*pa);
+  return mxGetPr (take_double (pa));
 }
 
 /* The core finds NaN/Inf itself (and retries with a smaller step); this
@@ -447,16 +470,10 @@ cb_events (double t, const double *y, double *value, int *isterminal,
 static int
 stop_flag (ctx_t *c, mxArray **pa, double t)
 {
-  mxArray *a = *pa;
   char buf[64];
-  if (mxIsEmpty (a))
+  if (mxIsEmpty (*pa))
     return 0;
-  if (mxIsSparse (a))
-    {
-      *pa = symmex_full (a);
-      mxDestroyArray (a);
-      a = *pa;
-    }
+  mxArray *a = take_full (pa);
   if (! (mxIsNumeric (a) || mxIsLogical (a) || mxIsChar (a))
       || mxIsComplex (a))
     mexErrMsgIdAndTxt (BADARG, "%s: OutputFcn must return a logical or "
@@ -471,14 +488,7 @@ stop_flag (ctx_t *c, mxArray **pa, double t)
           return 0;
       return 1;
     }
-  if (! mxIsDouble (a))
-    {
-      mxArray *out[1] = { NULL };
-      mexCallMATLAB (1, out, 1, pa, "double");
-      mxDestroyArray (a);
-      *pa = a = out[0];
-    }
-  const double *v = mxGetPr (a);
+  const double *v = mxGetPr (take_double (pa));
   int stop = 1;
   for (size_t i = 0; i < k; i++)
     {
@@ -570,14 +580,6 @@ sink_event (double te, const double *ye, int ie, void *user)
 }
 
 /* ------------------------------------------------------------ arguments */
-
-static mxArray *
-to_double (const mxArray *a)
-{
-  mxArray *in[1] = { (mxArray *) a }, *out[1] = { NULL };
-  mexCallMATLAB (1, out, 1, in, "double");
-  return out[0];
-}
 
 static int
 is_plain_numeric (const mxArray *a)
@@ -983,7 +985,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
         /* odeSPVI's pairs n - 1 > m: their extra modes of q are fixed
            only by d2H/dq2 (singular Newton matrices where it vanishes,
            whatever the step) */
-        int degenerate = o.q_dofs - 1 > o.nodes && o.q_dofs > 0 && ! why[0];
+        int degenerate = o.q_dofs - 1 > o.nodes && ! why[0];
         if (degenerate)
           snprintf (why, sizeof why, " (Q_DoFs - 1 > Nodes: such pairs "
                     "are degenerate where d2H/dq2 vanishes or is small; "
