@@ -66,9 +66,9 @@ sym_status_name (int status)
 }
 
 static int
-all_finite (int n, const double *v)
+all_finite (size_t n, const double *v)
 {
-  for (int i = 0; i < n; i++)
+  for (size_t i = 0; i < n; i++)
     if (! isfinite (v[i]))
       return 0;
   return 1;
@@ -261,7 +261,8 @@ sym_jac (sym_system *sys, double t, const double *y, const double *f0,
   int st = callback_status (sys, t, sys->jac (t, y, df, sys->user));
   if (st)
     return st;
-  return all_finite (n * n, df) ? SYM_SUCCESS : nonfinite_df_at (sys, t);
+  return all_finite ((size_t) n * (size_t) n, df) ? SYM_SUCCESS
+         : nonfinite_df_at (sys, t);
 }
 
 int
@@ -280,7 +281,8 @@ sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
     return st;
   if (! all_finite (n, dy))
     return nonfinite_at (sys, t);
-  return all_finite (n * n, df) ? SYM_SUCCESS : nonfinite_df_at (sys, t);
+  return all_finite ((size_t) n * (size_t) n, df) ? SYM_SUCCESS
+         : nonfinite_df_at (sys, t);
 }
 
 int
