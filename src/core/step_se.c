@@ -85,10 +85,13 @@ se_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
       s->separable = opts->separable != 0;
       s->want_f = opts->want_error || opts->want_dense;
     }
-  /* records, f cache, and x, scale, rv: 3d */
-  size_t len = sym_recs_len (n, 0) + sym_fcache_len (d) + 3 * (size_t) d;
+  /* records, f cache, and x, scale, rv: 3d; the separable step is
+     explicit: no Df and no Newton state (O(d^2) memory) */
+  const int implicit = ! s->separable;
+  size_t len = sym_recs_len (n, 0) + sym_fcache_len (d, implicit)
+               + 3 * (size_t) d;
   s->block = sym_calloc (len, sizeof (double));
-  if (! s->block || sym_kept_init (&s->kn, d, opts))
+  if (! s->block || (implicit && sym_kept_init (&s->kn, d, opts)))
     {
       se_free (s);
       *status = SYM_ENOMEM;
@@ -97,8 +100,8 @@ se_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   double *w = s->block;
   sym_recs_place (&s->o.r, n, 0, w);
   w += sym_recs_len (n, 0);
-  sym_fcache_place (&s->o.fc, d, w);
-  w += sym_fcache_len (d);
+  sym_fcache_place (&s->o.fc, d, implicit, w);
+  w += sym_fcache_len (d, implicit);
   s->x = w; w += d;
   s->scale = w; w += d;
   s->rv = w;

@@ -151,12 +151,15 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
       s->separable = opts->separable != 0;
       s->want_f = opts->want_error || opts->want_dense;
     }
-  /* records (aux: 2d), f cache, and x, scale, rv, fqa: 4d, ym: n */
-  size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d)
+  /* records (aux: 2d), f cache, and x, scale, rv, fqa: 4d, ym: n; the
+     separable step is explicit: no Df and no Newton state (O(d^2)) */
+  const int implicit = ! s->separable;
+  size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d, implicit)
                + 4 * (size_t) d + (size_t) n;
   s->block = sym_calloc (len, sizeof (double));
-  if (! s->block || sym_kept_init (&s->kp, d, opts)
-      || sym_kept_init (&s->kq, d, opts))
+  if (! s->block
+      || (implicit && (sym_kept_init (&s->kp, d, opts)
+                       || sym_kept_init (&s->kq, d, opts))))
     {
       sv_free (s);
       *status = SYM_ENOMEM;
@@ -165,8 +168,8 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   double *w = s->block;
   sym_recs_place (&s->o.r, n, 2 * d, w);
   w += sym_recs_len (n, 2 * d);
-  sym_fcache_place (&s->o.fc, d, w);
-  w += sym_fcache_len (d);
+  sym_fcache_place (&s->o.fc, d, implicit, w);
+  w += sym_fcache_len (d, implicit);
   s->x = w; w += d;
   s->scale = w; w += d;
   s->rv = w; w += d;

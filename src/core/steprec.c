@@ -223,14 +223,14 @@ sym_onestep_reset (void *state)
 /* ---------------------------------------------------------------- f cache */
 
 size_t
-sym_fcache_len (int d)
+sym_fcache_len (int d, int jac)
 {
   const size_t n = 2 * (size_t) d;
-  return 3 * n + n * n;
+  return 3 * n + (jac ? n * n : 0);
 }
 
 void
-sym_fcache_place (sym_fcache *c, int d, double *w)
+sym_fcache_place (sym_fcache *c, int d, int jac, double *w)
 {
   const int n = 2 * d;
   memset (c, 0, sizeof (*c));
@@ -238,7 +238,7 @@ sym_fcache_place (sym_fcache *c, int d, double *w)
   c->yw = w; w += n;
   c->fw = w; w += n;
   c->ym = w; w += n;
-  c->jw = w;
+  c->jw = jac ? w : NULL;
 }
 
 int

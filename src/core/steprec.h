@@ -83,8 +83,12 @@ void sym_onestep_accept (void *state);
 int sym_onestep_dense (void *state, sym_system *sys, double t, double *y);
 void sym_onestep_reset (void *state);
 
-size_t sym_fcache_len (int d);
-void sym_fcache_place (sym_fcache *c, int d, double *w);
+/* The cache's workspace: with jac, also the n x n Df (jw) that the
+   implicit steps' Newton matrices are built from; without, jw is NULL
+   (the explicit separable steps never ask for Df, and at large d it
+   would be most of their memory). */
+size_t sym_fcache_len (int d, int jac);
+void sym_fcache_place (sym_fcache *c, int d, int jac, double *w);
 /* f at (t, [a; b]) into fw; no call when fw already holds f there */
 int sym_fcache_f (sym_fcache *c, sym_system *sys, double t, const double *a,
                   const double *b);

@@ -501,6 +501,84 @@ test_alloc_failure (void)
     }
 }
 
+/* The explicit (Separable) steps allocate O(d) memory, the implicit ones
+   the O(d^2) of their Newton matrices and Df: counted at d = 1000 (a
+   harmonic chain, f = [p; -q]), where d^2 doubles are 8 MB. */
+static size_t alloc_bytes;
+
+static void *
+bytes_alloc (size_t n)
+{
+  alloc_bytes += n;
+  return malloc (n);
+}
+
+static int
+osc_rhs (double t, const double *y, double *dy, void *user)
+{
+  const int d = *(const int *) user;
+  (void) t;
+  for (int i = 0; i < d; i++)
+    {
+      dy[i] = y[d + i];
+      dy[d + i] = -y[i];
+    }
+  return 0;
+}
+
+static void
+test_separable_memory (void)
+{
+  int d = 1000;
+  sym_system sys;
+  memset (&sys, 0, sizeof sys);
+  sys.dim = d;
+  sys.rhs = osc_rhs;
+  sys.user = &d;
+  double *y = calloc (4 * (size_t) d, sizeof (double));
+  double *yn = y + 2 * d;
+  for (int sv = 0; sv < 2; sv++)
+    for (int sep = 1; sep >= 0; sep--)
+      {
+        sym_method_opts o;
+        memset (&o, 0, sizeof o);
+        o.separable = sep;
+        int st;
+        alloc_bytes = 0;
+        sym_set_allocator (bytes_alloc, free);
+        void *S = stepper (sv)->alloc (&sys, &o, &st);
+        sym_set_allocator (NULL, NULL);
+        size_t bytes = alloc_bytes;
+        CHECK (S != NULL, "%s d = %d: alloc %d", mname (sv), d, st);
+        if (! S)
+          continue;
+        if (sep)
+          {
+            /* and the step runs without the O(d^2) parts: one explicit
+               step of the chain from q = 1, p = 0 */
+            for (int i = 0; i < d; i++)
+              y[i] = 1.0, y[d + i] = 0.0;
+            st = stepper (sv)->step (S, &sys, 0, 0.01, y, yn, NULL);
+            CHECK (st == 0 && fabs (yn[0] - cos (0.01)) < 1e-4
+                   && fabs (yn[d] + sin (0.01)) < 1e-4,
+                   "%s separable step at d = %d: %d %g %g", mname (sv), d,
+                   st, yn[0], yn[d]);
+          }
+        stepper (sv)->free (S);
+        const double per_d = (double) bytes / (8.0 * d);
+        printf ("%s d = %d, Separable %s: alloc takes %zu bytes (%.0f "
+                "doubles per d)\n", mname (sv), d, sep ? "on" : "off", bytes,
+                per_d);
+        if (sep)
+          CHECK (per_d < 100, "%s separable: %g doubles per d", mname (sv),
+                 per_d);
+        else
+          CHECK (per_d > d, "%s implicit: %g doubles per d (its Newton "
+                 "matrices need d^2)", mname (sv), per_d);
+      }
+  free (y);
+}
+
 /* ------------------------------------------------------------ misc */
 static void
 test_bad_input_and_reset (void)
@@ -663,6 +741,7 @@ main (void)
   test_newton_fail ();
   test_jac_check ();
   test_alloc_failure ();
+  test_separable_memory ();
   test_bad_input_and_reset ();
   return tu_finish ("test_se_sv_robust");
 }
