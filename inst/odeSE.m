@@ -121,13 +121,19 @@
 ## are errors.  Event times, output times and refined rows come
 ## from the dense output (cubic Hermite interpolation between steps, from
 ## @var{fcn} at the step points).  An event counts where its function
-## changes sign or becomes zero (in the chosen direction) after t0: a zero
-## at t0 itself is not reported, a zero that touches without a change of
-## sign only when it falls on a step point.  An Events function whose
-## VALUE is empty at t0 gives no events; its DIRECTION must hold -1, 0
-## or 1 (other values, which @code{ode45} takes as a direction that never
-## occurs, are errors).  Events located at the time of a terminal event
-## (within the round-off of their location) are reported with it.
+## changes sign or becomes zero (in the chosen direction) after t0,
+## between the points where the Events function is evaluated: the step
+## points (and in @code{odeSPVI}, whose steps are long, more points
+## inside each step: see its help).  Two zeros between two such points
+## (the function back to its sign) are not seen, as in @code{ode45};
+## @code{MaxStep} or a smaller TimeStepSize closes the gap.
+## A zero at t0 itself is not reported, a zero that touches without a
+## change of sign only when it falls on such a point.  An Events function
+## whose VALUE is empty at t0 gives no events; a NaN in VALUE is an error
+## (it has no sign); DIRECTION must hold -1, 0 or 1 (other values, which
+## @code{ode45} takes as a direction that never occurs, are errors).
+## Events located at the time of a terminal event (within the round-off
+## of their location) are reported with it.
 ## @code{Refine}
 ## (default 1: step points only, where the method's properties hold) adds
 ## interpolated rows between steps; as in @code{ode45} it is ignored with

@@ -320,6 +320,8 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return 1 real values, got 2x1 double at t = 0\\.[5-9]", f, [0 1], y0, struct ("Events", @(t, y) bi_events (t, y, "grow")));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return DIRECTION of -1, 0 or 1, got 2 at t = 0", f, [0 1], y0, struct ("Events", @(t, y) deal (y(1), 0, 2)));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Events function must return DIRECTION of -1, 0 or 1, got 0.5 at t = 0", f, [0 1], y0, struct ("Events", @(t, y) deal ([y(1); y(2)], 0, [1; 0.5])));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function returned NaN in VALUE\\(2\\) at t = 0$", f, [0 1], y0, struct ("Events", @(t, y) deal ([y(1); NaN], 0, 0)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Events function returned NaN in VALUE\\(1\\) at t = 0\\.[45]", f, [0 1], y0, struct ("Events", @(t, y) deal (merge (t < 0.45, y(1), NaN), 0, 0), "TimeStepSize", 0.1));
 
 ## ------------------------------------------------------------ odeSPVI: Q_DoFs, Nodes
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs must be an integer, got 2.5", f, [0 1], y0, struct ("Q_DoFs", 2.5));

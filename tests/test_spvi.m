@@ -374,3 +374,56 @@
 %!error <Nodes must be between 1> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Nodes", 0))
 %!error <Nodes must be an integer> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("Nodes", 2.5))
 %!error <P_DoFs must be between 1> odeSPVI (@pendulum, [0 1], [1; 0], symplecticset ("P_DoFs", 41))
+
+## ----------------------------------------------------------------- events
+%!test
+%! ## q = sin t exceeds 0.99 for 0.28 of every 2 pi (0.999: 0.09): a pair
+%! ## of zeros that one long step holds whole.  The Events function is also
+%! ## evaluated at Nodes points inside each step and at the extremum of
+%! ## the parabola through three of them, so all 6 zeros in [0, 20] are
+%! ## found, in order and accurately; the sign changes between step points
+%! ## alone miss pairs in every run here.
+%! f = @(t, y) [y(2); -y(1)];
+%! for th = [0.99 0.999]
+%!   ev = @(t, y) deal (y(1) - th, false, 0);
+%!   a = asin (th);
+%!   tz = sort ([a + 2*pi*(0:3), pi - a + 2*pi*(0:3)]);
+%!   tz = tz(tz < 20);
+%!   for tol = [1e-3 1e-4 1e-6 1e-8]
+%!     o = symplecticset ("RelTol", tol, "AbsTol", tol, "Events", ev);
+%!     sol = odeSPVI (f, [0 20], [0; 1], o);
+%!     assert (numel (sol.xe), 6);
+%!     assert (sol.xe(:).', tz, 10 * tol / (1 - th));
+%!     assert (all (diff (sol.xe) > 0));
+%!     g = sol.y(1, :) - th;
+%!     seen = sum (sign (g(1:end-1)) != sign (g(2:end)));
+%!     assert (seen < 6);
+%!     [t, y, te] = odeSPVI (f, [0 20], [0; 1], o);
+%!     assert (te, sol.xe(:));
+%!   endfor
+%! endfor
+%!test
+%! ## a terminal event at the first zero of such a pair ends the run there
+%! f = @(t, y) [y(2); -y(1)];
+%! for tol = [1e-3 1e-4 1e-6]
+%!   o = symplecticset ("RelTol", tol, "AbsTol", tol, ...
+%!                      "Events", @(t, y) deal (y(1) - 0.99, true, 0));
+%!   [t, y, te] = odeSPVI (f, [3 20], [sin(3); cos(3)], o);
+%!   assert (te, 2*pi + asin (0.99), 10 * tol);
+%!   assert (t(end), te);
+%! endfor
+%!test
+%! ## the cost of Events: the call of fcn at each step's end for the dense
+%! ## output, one per step (Kepler, fixed step 2 pi/100, 10 periods: 9.4
+%! ## calls per step without Events, 10.4 with), and Nodes calls of the
+%! ## Events function per step besides those that locate the events
+%! e = 0.6;
+%! y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! kep = @(t, y) [y(3:4); -y(1:2) / norm(y(1:2))^3];
+%! o = symplecticset ("TimeStepSize", 2*pi/100);
+%! s0 = odeSPVI (kep, [0 20*pi], y0, o);
+%! s1 = odeSPVI (kep, [0 20*pi], y0, symplecticset (o, "Events", @(t, y) deal (y(2), 0, 0)));
+%! assert (s1.stats.nsteps, s0.stats.nsteps);
+%! assert (s0.stats.nfevals / s0.stats.nsteps, 9.4, 0.05);
+%! assert (s1.stats.nfevals - s0.stats.nfevals, s0.stats.nsteps, 2);
+%! assert (s1.xe(:).', pi * (1:20), 1e-4);   # the phase error of h = T/100

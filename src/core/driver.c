@@ -19,6 +19,9 @@ typedef struct {
   double dir;
   /* events */
   double *vold, *vnew, *vtry;
+  double *vs;           /* event values at the samples inside a step */
+  double *vca, *vcb;    /* and at the vertices between them */
+  double *tcand;        /* the vertices' places */
   int *term, *edir;
   double *ydense;
   /* events found in one step, sorted by time (nevents each) */
@@ -72,6 +75,14 @@ locate (run_t *r, int k, double ta, double ga, double tb, double gb,
         double *te)
 {
   int side = 0;
+  if (gb == 0)
+    {
+      /* the zero is the step's end itself (a fixed step landing on it):
+         regula falsi would propose tb and fall back on bisection, some
+         50 calls of the events function for nothing */
+      *te = tb;
+      return SYM_SUCCESS;
+    }
   for (int it = 0; it < 200; it++)
     {
       double width = fabs (tb - ta);
@@ -119,15 +130,16 @@ locate (run_t *r, int k, double ta, double ga, double tb, double gb,
   return SYM_SUCCESS;
 }
 
-/* Find the events in the accepted step (t, tnew]; report them in time
-   order up to and including the first terminal one, and those located at
-   its time too: within 32 ulps of t and 64 eps of the step (two event
+/* Find the events in (ta, tb] (va, vb: the event values at its ends)
+   and report them in time order up to and including the first terminal
+   one, and those located at its time too: within same of it (two event
    functions that vanish together, located apart by the round-off of the
    dense output and of the functions, are both reported whichever of them
    is terminal; q and tanh(q) near t = 0 came out 1e-17 apart).  *tstop
    is set to the terminal event's time (or stays NAN). */
 static int
-handle_events (run_t *r, double t, double tnew, double *tstop)
+events_between (run_t *r, double ta, const double *va, double tb,
+                const double *vb, double same, double *tstop)
 {
   const sym_driver_opts *o = r->o;
   int ne = o->nevents;
@@ -138,10 +150,10 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
   int nf = 0;
   for (int k = 0; k < ne; k++)
     {
-      if (! crosses (r->vold[k], r->vnew[k], r->edir[k]))
+      if (! crosses (va[k], vb[k], r->edir[k]))
         continue;
       double te;
-      int st = locate (r, k, t, r->vold[k], tnew, r->vnew[k], &te);
+      int st = locate (r, k, ta, va[k], tb, vb[k], &te);
       if (st)
         return st;
       int j = nf++;
@@ -154,8 +166,6 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
       tfound[j] = te;
       kfound[j] = k;
     }
-  const double same = 32 * DBL_EPSILON * fmax (fabs (t), fabs (tnew))
-                      + 64 * DBL_EPSILON * fabs (tnew - t);
   for (int j = 0; j < nf; j++)
     {
       if (! isnan (*tstop) && ! (fabs (tfound[j] - *tstop) <= same))
@@ -172,6 +182,114 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
       if (r->term[kfound[j]] && isnan (*tstop))
         *tstop = tfound[j];
     }
+  return SYM_SUCCESS;
+}
+
+/* Where the parabola through three equally spaced event values a, b, c
+   (at u = -1, 0, 1) has its vertex: u, or NAN if that is not in (lo, hi)
+   or its value there is not clearly (beyond the round-off of the values)
+   of the other sign than b: no zero pair predicted (a zero that only
+   touches, as (t - 1)^2 does, is not one). */
+static double
+vertex_pair (double a, double b, double c, double lo, double hi)
+{
+  double curv = a - 2 * b + c;
+  if (! (b != 0) || ! (curv != 0) || (curv > 0) != (b > 0))
+    return NAN;   /* no extremum towards the other sign */
+  double u = -(c - a) / (2 * curv);
+  double g = b - (c - a) * (c - a) / (8 * curv);
+  double big = fmax (fabs (a), fmax (fabs (b), fabs (c)));
+  if (! (u > lo && u < hi) || (g > 0) == (b > 0)
+      || ! (fabs (g) > 64 * DBL_EPSILON * big))
+    return NAN;
+  return u;
+}
+
+/* The events of the accepted step (t, tnew]: the event values at its
+   ends, and at ns = o->event_samples equally spaced points inside it on
+   the dense output, so that a zero pair inside the step (the function
+   back to its sign at the end) is seen when a sample falls between its
+   zeros.  A pair between two samples is still found where the parabola
+   through three neighbouring samples of the function has its extremum
+   between them on the other side of zero: the function is evaluated
+   there too (q = sin t above 0.99 for 0.28 of its period, samples 0.4
+   apart: found).  The pieces in time order until a terminal event.
+   Events at one time: within 32 ulps of t and 64 eps of the step. */
+static int
+handle_events (run_t *r, double t, double tnew, double *tstop)
+{
+  const int ne = r->o->nevents;
+  const int ns = r->o->event_samples > 0 ? r->o->event_samples : 0;
+  const double same = 32 * DBL_EPSILON * fmax (fabs (t), fabs (tnew))
+                      + 64 * DBL_EPSILON * fabs (tnew - t);
+  const double dt = (tnew - t) / (ns + 1);
+  int st;
+  /* the values at the samples, points 1..ns (0: t, ns + 1: tnew) */
+  for (int i = 1; i <= ns; i++)
+    {
+      double ti = t + (tnew - t) * ((double) i / (ns + 1));
+      double *vi = r->vs + (size_t) (i - 1) * ne;
+      st = r->type->dense (r->state, r->sys, ti, r->ydense);
+      if (! st)
+        st = call_events (r, ti, r->ydense, vi);
+      if (st)
+        return st;
+    }
+#define VAL(i) ((i) == 0 ? r->vold : (i) == ns + 1 ? r->vnew \
+                : r->vs + (size_t) ((i) - 1) * ne)
+  for (int j = 0; j <= ns && isnan (*tstop); j++)
+    {
+      double ta = j == 0 ? t : t + (tnew - t) * ((double) j / (ns + 1));
+      double tb = j == ns ? tnew
+                  : t + (tnew - t) * ((double) (j + 1) / (ns + 1));
+      const double t0 = ta;
+      const double *va = VAL (j), *vb = VAL (j + 1);
+      /* vertices of a predicted zero pair in (ta, tb), as fractions of
+         the piece, in order */
+      int nc = 0;
+      for (int k = 0; k < ne && ns > 0; k++)
+        {
+          if (! (va[k] != 0 && vb[k] != 0 && (va[k] > 0) == (vb[k] > 0)))
+            continue;
+          double u = NAN;
+          if (j >= 1)          /* centred on point j: u in (0, 1) */
+            u = vertex_pair (VAL (j - 1)[k], va[k], vb[k], 0, 1);
+          if (isnan (u) && j + 2 <= ns + 1)   /* on j + 1: (-1, 0) */
+            {
+              u = vertex_pair (va[k], vb[k], VAL (j + 2)[k], -1, 0);
+              u += 1;
+            }
+          if (isnan (u))
+            continue;
+          int c = nc++;
+          while (c > 0 && r->tcand[c - 1] > u)
+            {
+              r->tcand[c] = r->tcand[c - 1];
+              c--;
+            }
+          r->tcand[c] = u;
+        }
+      for (int c = 0; c < nc && isnan (*tstop); c++)
+        {
+          double tc = t0 + dt * r->tcand[c];
+          if (! (r->dir * (tc - ta) > 0 && r->dir * (tb - tc) > 0))
+            continue;
+          double *vc = va == r->vca ? r->vcb : r->vca;
+          st = r->type->dense (r->state, r->sys, tc, r->ydense);
+          if (! st)
+            st = call_events (r, tc, r->ydense, vc);
+          if (! st)
+            st = events_between (r, ta, va, tc, vc, same, tstop);
+          if (st)
+            return st;
+          ta = tc;
+          va = vc;
+        }
+      if (isnan (*tstop)
+          && (st = events_between (r, ta, va, tb, vb, same, tstop)))
+        return st;
+    }
+#undef VAL
   return SYM_SUCCESS;
 }
 
@@ -304,7 +422,8 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
     return st ? st : SYM_ENOMEM;
 
   int ne = o->nevents > 0 ? o->nevents : 0;
-  double *work = sym_calloc ((size_t) 6 * n + 4 * (size_t) ne + 1,
+  const int ns = o->event_samples > 0 ? o->event_samples : 0;
+  double *work = sym_calloc ((size_t) 6 * n + (7 + (size_t) ns) * ne + 1,
                              sizeof (double));
   int *iwork = sym_calloc ((size_t) 3 * ne + 1, sizeof (int));
   if (! work || ! iwork)
@@ -321,6 +440,10 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
   r.vnew = r.vold + ne;
   r.vtry = r.vnew + ne;
   r.tfound = r.vtry + ne;
+  r.vca = r.tfound + ne;
+  r.vcb = r.vca + ne;
+  r.tcand = r.vcb + ne;
+  r.vs = r.tcand + ne;
   r.term = iwork;
   r.edir = iwork + ne;
   r.kfound = iwork + 2 * ne;

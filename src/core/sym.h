@@ -310,6 +310,10 @@ typedef struct {
   sym_event_fn events;
   void *event_user;
   sym_eventout_fn event_out;
+  int event_samples;   /* events also checked at this many equally spaced
+                          points inside each step, on the dense output (a
+                          zero pair inside one step is otherwise unseen);
+                          0: at the step points only */
   /* output */
   sym_output_fn output;
   void *output_user;

@@ -436,6 +436,12 @@ cb_events (double t, const double *y, double *value, int *isterminal,
   const double *v = checked_values (c, &out[0], c->nevents,
                                     "the Events function", t,
                                     "%d real values", c->nevents);
+  /* a NaN has no sign: no crossing could be told (and the located time
+     of one next to it would be arbitrary) */
+  for (int i = 0; i < c->nevents; i++)
+    if (isnan (v[i]))
+      mexErrMsgIdAndTxt (BADARG, "%s: the Events function returned NaN in "
+                         "VALUE(%d) at t = %.17g", c->solver, i + 1, t);
   memcpy (value, v, sizeof (double) * c->nevents);
   for (int k = 1; k < 3; k++)
     {
@@ -952,6 +958,9 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   dopt.max_steps = o.max_steps;
   dopt.nevents = c->nevents;
   dopt.events = c->nevents > 0 ? cb_events : NULL;
+  /* odeSPVI's long steps: the events function also at Nodes points
+     inside each step (see its help) */
+  dopt.event_samples = solver->type == sym_step_spvi ? o.nodes : 0;
   dopt.event_user = c;
   dopt.event_out = sink_event;
   dopt.output = sink_row;

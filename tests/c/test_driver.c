@@ -241,6 +241,52 @@ ev_fn (double t, const double *y, double *v, int *term, int *dir, void *u)
   return 0;
 }
 
+/* an event at t = 1 (non-terminal, any direction); counts its calls in
+   the long that is its user data */
+static int
+ev_time (double t, const double *y, double *v, int *term, int *dir, void *u)
+{
+  (void) y;
+  (*(long *) u)++;
+  v[0] = t - 1.0;
+  term[0] = 0;
+  dir[0] = 0;
+  return 0;
+}
+
+/* q - level (cos t - level on the exact flow), terminal per flag */
+typedef struct
+{
+  double level;
+  int terminal;
+} peak_user;
+
+static int
+ev_peak (double t, const double *y, double *v, int *term, int *dir, void *u)
+{
+  const peak_user *pu = u;
+  (void) t;
+  v[0] = y[0] - pu->level;
+  term[0] = pu->terminal;
+  dir[0] = 0;
+  return 0;
+}
+
+/* cos t - 0.9999 and cos (t - 0.05) - 0.9999 on the exact flow: narrow
+   excursions above zero centred 0.05 apart */
+static int
+ev_two_peaks (double t, const double *y, double *v, int *term, int *dir,
+              void *u)
+{
+  (void) t;
+  (void) u;
+  v[0] = y[0] - 0.9999;
+  v[1] = y[0] * cos (0.05) - y[1] * sin (0.05) - 0.9999;
+  term[0] = term[1] = 0;
+  dir[0] = dir[1] = 0;
+  return 0;
+}
+
 /* two event functions with the same zeros, q and 2 q, terminal per
    flags (an int[2] as user data) */
 static int
@@ -436,6 +482,104 @@ main (void)
     st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
     CHECK (st == SYM_STOP_EVENT, "status");
     CHECK_CLOSE (S.t[S.nrows - 1], 3 * M_PI / 2, 1e-14, "rising event");
+  }
+
+  /* an event on a step point (t = 1, h = 0.25): reported once, at 1,
+     with one call of the events function per step and one at t0 (no
+     search inside the step: it took 57 calls before) */
+  {
+    static long ncalls;
+    ncalls = 0;
+    setup (&sys, &hu, &o, &atol);
+    o.tf = 2;
+    o.h_fixed = 0.25;
+    o.nevents = 1;
+    o.events = ev_time;
+    o.event_user = &ncalls;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_DONE && S.nev == 1 && S.te[0] == 1.0,
+           "event on a step point: %s, %d events, te %.17g",
+           sym_status_name (st), S.nev, S.nev ? S.te[0] : NAN);
+    CHECK (ncalls == 9, "event on a step point: %ld calls of events "
+           "(8 steps and t0)", ncalls);
+  }
+
+  /* a zero pair inside one step: q = cos t exceeds 0.99 only for
+     |t - 2 pi| < acos(0.99) = 0.1415, inside the step (6, 6.5] of
+     h = 0.5.  At the step points alone it is unseen; with 3 samples
+     inside each step both zeros are found, in order, to round-off; a
+     terminal one (from t0 = 6) stops the run at the first.  Above 0.9999
+     (|t - 2 pi| < 0.0141) the pair lies between the samples 6.25 and
+     6.375: found at the vertex of the parabola through the samples. */
+  {
+    static peak_user pu;
+    for (int run = 0; run < 4; run++)
+      {
+        pu.level = run == 3 ? 0.9999 : 0.99;
+        pu.terminal = run == 2;
+        const double a = acos (pu.level);
+        const double tz[3] = { a, 2 * M_PI - a, 2 * M_PI + a };
+        setup (&sys, &hu, &o, &atol);
+        o.h_fixed = 0.5;
+        o.nevents = 1;
+        o.events = ev_peak;
+        o.event_user = &pu;
+        o.event_samples = run ? 3 : 0;
+        double y6[2] = { cos (6.0), -sin (6.0) };
+        if (pu.terminal)
+          o.t0 = 6.0;
+        st = sym_integrate (&exact_type, &sys, &mo, &o,
+                            pu.terminal ? y6 : y0, &tr);
+        if (run == 0)
+          CHECK (st == SYM_DONE && S.nev == 1
+                 && fabs (S.te[0] - tz[0]) < 1e-14,
+                 "zero pair, step points only: %s, %d events (the pair "
+                 "unseen)", sym_status_name (st), S.nev);
+        else if (run != 2)
+          {
+            double err = 0;
+            for (int i = 0; i < S.nev && i < 3; i++)
+              err = fmax (err, fabs (S.te[i] - tz[i]));
+            /* the zeros near the top: slope 0.014, so the round-off of
+               q (1e-16) moves them by 1e-14 */
+            CHECK (st == SYM_DONE && S.nev == 3
+                   && err < (run == 3 ? 1e-12 : 1e-14),
+                   "zero pair above %g, 3 samples a step: %s, %d events, "
+                   "error %.3g", pu.level, sym_status_name (st), S.nev, err);
+          }
+        else
+          CHECK (st == SYM_STOP_EVENT && S.nev == 1
+                 && fabs (S.te[0] - tz[1]) < 1e-14
+                 && fabs (tr - tz[1]) < 1e-14,
+                 "terminal zero pair: %s, %d events, te %.17g",
+                 sym_status_name (st), S.nev, S.nev ? S.te[0] : NAN);
+      }
+  }
+
+  /* two such pairs in one piece between samples (6.25, 6.375], each
+     found at its own vertex, and the pairs of the first step too: all
+     zeros, in time order */
+  {
+    setup (&sys, &hu, &o, &atol);
+    o.h_fixed = 0.5;
+    o.nevents = 2;
+    o.events = ev_two_peaks;
+    o.event_samples = 3;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    const double a = acos (0.9999), c = 0.05;
+    const double tz[7] = { a, c - a, c + a, 2 * M_PI - a, 2 * M_PI + a,
+                           2 * M_PI + c - a, 2 * M_PI + c + a };
+    const int iz[7] = { 0, 1, 1, 0, 0, 1, 1 };
+    double err = 0;
+    int same = S.nev == 7;
+    for (int i = 0; i < S.nev && i < 7; i++)
+      {
+        err = fmax (err, fabs (S.te[i] - tz[i]));
+        same &= S.ie[i] == iz[i];
+      }
+    CHECK (st == SYM_DONE && same && err < 1e-12,
+           "two pairs in one piece: %s, %d events, error %.3g",
+           sym_status_name (st), S.nev, err);
   }
 
   /* two events that vanish together: both are reported at the stop,
