@@ -158,8 +158,10 @@
 ## returns every row computed so far.  The warnings' identifiers are
 ## @code{symplectic:newton-failed}, @code{symplectic:nonfinite},
 ## @code{symplectic:step-size}, @code{symplectic:max-steps},
-## @code{symplectic:output-stop} and @code{symplectic:callback} (and
-## @code{symplectic:tolerance} for a RelTol raised to 100*eps); bad
+## and @code{symplectic:output-stop} (and @code{symplectic:tolerance} for
+## a RelTol raised to 100*eps, @code{symplectic:tspan-beyond-end} for
+## output times after the end of TimeStepNumber steps); an error in a
+## function of the user's ends the run with that error; bad
 ## arguments raise errors with the identifier
 ## @code{Octave:invalid-input-arg} whose message begins with the solver's
 ## name.

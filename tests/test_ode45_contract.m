@@ -853,3 +853,16 @@
 
 %!test
 %! clear -global CONTRACT_CALLS CONTRACT_LOG CONTRACT_TSTOP
+
+%!test
+%! ## output times after the end of TimeStepNumber steps: a warning with
+%! ## its identifier, and no rows for them
+%! for s = {@odeSE, @odeSV, @odeSPVI}
+%!   o = symplecticset ("TimeStepNumber", 3, "TimeStepSize", 0.1);
+%!   lastwarn ("");
+%!   [t, y] = s{1} (@contract_osc, [0 0.05 0.5 2], [1; 0], o);
+%!   [msg, id] = lastwarn ();
+%!   assert (id, "symplectic:tspan-beyond-end");
+%!   assert (! isempty (strfind (msg, "ends at t = 0.3")));
+%!   assert (t, [0; 0.05]);
+%! endfor
