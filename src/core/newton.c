@@ -77,11 +77,15 @@ sym_lu_factor (sym_lu *lu, sym_counters *c)
   int info = 0;
   if (c)
     c->nlu++;
+  /* An Inf or NaN here comes from finite Jacobians (those are checked
+     when they come back), h Df overflowing: no factors, as for a
+     singular matrix (a Newton failure; SYM_NONFINITE would stand for a
+     callback's NaN at a time it did not set). */
   for (size_t i = 0; i < (size_t) lu->n * lu->n; i++)
     if (! isfinite (lu->a[i]))
       {
         lu->factored = 0;
-        return SYM_NONFINITE;
+        return SYM_SINGULAR;
       }
   dgetrf_ (&lu->n, &lu->n, lu->a, &lu->n, lu->ipiv, &info);
   lu->factored = (info == 0);

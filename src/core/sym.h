@@ -15,6 +15,7 @@
 #ifndef SYM_H
 #define SYM_H
 
+#include <limits.h>
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -162,7 +163,8 @@ typedef struct {
 
 int sym_lu_init (sym_lu *lu, int n);          /* allocates; SYM_ENOMEM */
 void sym_lu_free (sym_lu *lu);
-int sym_lu_factor (sym_lu *lu, sym_counters *c); /* SYM_SINGULAR if singular */
+/* SYM_SINGULAR if singular or not finite */
+int sym_lu_factor (sym_lu *lu, sym_counters *c);
 int sym_lu_solve (sym_lu *lu, double *b, sym_counters *c); /* b <- A \ b */
 
 /* ---------------------------------------------------------------- Newton */
@@ -280,8 +282,10 @@ typedef int (*sym_eventout_fn) (double te, const double *ye, int ie,
                                 void *user);
 
 /* The most steps a fixed TimeStepSize may need (doubles count them
-   exactly; the Octave layer refuses more than 1e12) */
-#define SYM_MAX_FIXED_STEPS 1e15
+   exactly; the Octave layer refuses more than 1e12), and within a long
+   where that has 32 bits */
+#define SYM_MAX_FIXED_STEPS \
+  (LONG_MAX / 2 < 1e15 ? (double) (LONG_MAX / 2) : 1e15)
 
 typedef struct {
   double t0, tf;

@@ -3,10 +3,16 @@
 #include "symmex.h"
 
 #include <ctype.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+
+/* The most steps TimeStepNumber and MaxSteps may ask for: 1e12, or what
+   a long holds where it has 32 bits */
+#define MAX_COUNT (LONG_MAX / 2 < 1000000000000LL ? LONG_MAX / 2 \
+                   : (long) 1000000000000LL)
 
 static const char *BADARG = "Octave:invalid-input-arg";
 
@@ -315,7 +321,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                ? pos_scalar (solver, v, "TimeStepSize", 0) : 0;
   o->nsteps_fixed = (v = field (opts, "TimeStepNumber"))
                     ? pos_integer (solver, v, "TimeStepNumber", 1,
-                                   1000000000000L) : 0;
+                                   MAX_COUNT) : 0;
   o->separable = (v = field (opts, "Separable"))
                  ? on_off (solver, v, "Separable") : 0;
   o->newton_tol = (v = field (opts, "NewtonTol"))
@@ -328,7 +334,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                   ? (int) pos_integer (solver, v, "MaxNewtonIterations", 1,
                                        1000) : 0;
   o->max_steps = (v = field (opts, "MaxSteps"))
-                 ? pos_integer (solver, v, "MaxSteps", 1, 1000000000000L) : 0;
+                 ? pos_integer (solver, v, "MaxSteps", 1, MAX_COUNT) : 0;
 
   /* odeset fields that would change the problem solved: not taken (a
      projection onto y >= 0 would break the symplectic map; Hamilton's

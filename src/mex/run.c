@@ -928,7 +928,9 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
             : cb_jac;
   sys.rhs_jac = c->jac_source == JAC_FCN2 ? cb_rhs_jac : NULL;
   sys.user = c;
-  sys.cnt.nrhs = 1 + have2 * 0;   /* the probe */
+  /* the probe: one evaluation of f (a two-output call that raised, as a
+     function of one output does on its call, evaluated nothing) */
+  sys.cnt.nrhs = 1;
   sys.cnt.nrhs_states = 1;
 
   sym_method_opts mo;

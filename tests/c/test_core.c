@@ -285,6 +285,11 @@ main (void)
     }
   memset (lu.a, 0, 9 * sizeof (double));
   CHECK (sym_lu_factor (&lu, NULL) == SYM_SINGULAR, "singular");
+  /* not finite (h Df overflowing): no factors either */
+  memcpy (lu.a, A, sizeof A);
+  lu.a[4] = INFINITY;
+  CHECK (sym_lu_factor (&lu, NULL) == SYM_SINGULAR && ! lu.factored,
+         "not finite");
   CHECK (sym_lu_solve (&lu, b, NULL) == SYM_EBADINPUT, "no solve unfactored");
   sym_lu_free (&lu);
 
