@@ -122,6 +122,11 @@ function status = memcheck_run ()
     nbad += expect_error (s, "mc:fcn", @(t, y) mc_fail_after (t, y, 0.5), [0 1], [1 0]);
     nbad += expect_error (s, "mc:fcn", @(t, y) mc_fail_after (t, y, 0.5), [0 1], [1 0], struct ("TimeStepSize", 0.01, "Refine", 2));
     nbad += expect_error (s, "mc:ev", osc, [0 1], [1 0], struct ("Events", @(t, y) mc_ev_fail (t, y)));
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("Events", @(t, y) deal (merge (t < 0.45, y(1), NaN), 0, 0), "TimeStepSize", 0.1));
+    ## zero pairs inside steps (odeSPVI: samples inside the step and the
+    ## parabola's turning points)
+    [t, y, te] = s (osc, [0 20], [1 0], struct ("Events", @(t, y) deal (y(1) - 0.99, 0, 0), "RelTol", 1e-4));
+    nbad += check (numel (te) == 7, name, "zero pairs");
     nbad += expect_error (s, "mc:out", osc, [0 1], [1 0], struct ("OutputFcn", @(t, y, f) mc_out_fail (t, y, f)));
     nbad += expect_error (s, "mc:hess", osc, [0 1], [1 0], struct ("HamiltonianHessFcn", @(t, y) error ("mc:hess", "x")));
   endfor
