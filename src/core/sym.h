@@ -271,7 +271,9 @@ extern const sym_stepper_type *const sym_step_sv;
 extern const sym_stepper_type *const sym_step_spvi;
 
 /* ---------------------------------------------------------------- driver */
-/* Events: value[k] for k < nevents; isterminal/direction as in Octave. */
+/* Events: value[k] for k < nevents; isterminal/direction as in Octave.
+   A NaN value has no sign: no crossing is seen next to it (the Octave
+   layer refuses it). */
 typedef int (*sym_event_fn) (double t, const double *y, double *value,
                              int *isterminal, int *direction, void *user);
 /* Output sink: one row (t, y).  Return 0 to go on, 1 to stop the run,
@@ -315,9 +317,11 @@ typedef struct {
   void *event_user;
   sym_eventout_fn event_out;
   int event_samples;   /* events also checked at this many equally spaced
-                          points inside each step, on the dense output (a
-                          zero pair inside one step is otherwise unseen);
-                          0: at the step points only */
+                          points inside each step, on the dense output,
+                          and where the parabola through three of them
+                          turns back across zero (a zero pair inside one
+                          step is otherwise unseen); 0: at the step
+                          points only */
   /* output */
   sym_output_fn output;
   void *output_user;
