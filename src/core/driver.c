@@ -237,9 +237,13 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
     }
 #define VAL(i) ((i) == 0 ? r->vold : (i) == ns + 1 ? r->vnew \
                 : r->vs + (size_t) ((i) - 1) * ne)
-  for (int j = 0; j <= ns && isnan (*tstop); j++)
+  for (int j = 0; j <= ns; j++)
     {
       double ta = j == 0 ? t : t + (tnew - t) * ((double) j / (ns + 1));
+      /* after a terminal event, only the events at its time (one on a
+         sample point, another located an ulp after it) */
+      if (! isnan (*tstop) && ! (fabs (ta - *tstop) <= same))
+        break;
       double tb = j == ns ? tnew
                   : t + (tnew - t) * ((double) (j + 1) / (ns + 1));
       const double t0 = ta;
@@ -285,7 +289,7 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
           ta = tc;
           va = vc;
         }
-      if (isnan (*tstop)
+      if ((isnan (*tstop) || fabs (ta - *tstop) <= same)
           && (st = events_between (r, ta, va, tb, vb, same, tstop)))
         return st;
     }

@@ -287,6 +287,22 @@ ev_two_peaks (double t, const double *y, double *v, int *term, int *dir,
   return 0;
 }
 
+/* t - 1.125, terminal, and t - 1.125 - 4.4e-16 (2 ulps later): the first
+   on a sample point of the step (1, 1.5] with 3 samples */
+static int
+ev_at_sample (double t, const double *y, double *v, int *term, int *dir,
+              void *u)
+{
+  (void) y;
+  (void) u;
+  v[0] = t - 1.125;
+  v[1] = (t - 1.125) - 4.4e-16;
+  term[0] = 1;
+  term[1] = 0;
+  dir[0] = dir[1] = 0;
+  return 0;
+}
+
 /* two event functions with the same zeros, q and 2 q, terminal per
    flags (an int[2] as user data) */
 static int
@@ -580,6 +596,22 @@ main (void)
     CHECK (st == SYM_DONE && same && err < 1e-12,
            "two pairs in one piece: %s, %d events, error %.3g",
            sym_status_name (st), S.nev, err);
+  }
+
+  /* a terminal event on a sample point and another two ulps after it, in
+     the next piece: both reported at the stop, as within one piece */
+  {
+    setup (&sys, &hu, &o, &atol);
+    o.h_fixed = 0.5;
+    o.nevents = 2;
+    o.events = ev_at_sample;
+    o.event_samples = 3;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_STOP_EVENT && S.nev == 2 && S.te[0] == 1.125
+           && S.ie[1] == 1 && fabs (S.te[1] - 1.125) < 1e-15
+           && tr == 1.125,
+           "terminal event on a sample point: %s, %d events",
+           sym_status_name (st), S.nev);
   }
 
   /* two events that vanish together: both are reported at the stop,
