@@ -53,6 +53,14 @@ call_events (run_t *r, double t, const double *y, double *v)
   return SYM_SUCCESS;
 }
 
+/* The event values v at t inside the accepted step (its dense output) */
+static int
+events_at (run_t *r, double t, double *v)
+{
+  int st = r->type->dense (r->state, r->sys, t, r->ydense);
+  return st ? st : call_events (r, t, r->ydense, v);
+}
+
 /* Does event k cross zero from a to b in its selected direction? */
 static int
 crosses (double a, double b, int direction)
@@ -96,9 +104,7 @@ locate (run_t *r, int k, double ta, double ga, double tb, double gb,
         tm = tb - gb * (tb - ta) / (gb - ga);
       if (! (tm > fmin (ta, tb) && tm < fmax (ta, tb)))
         tm = 0.5 * (ta + tb);
-      int st = r->type->dense (r->state, r->sys, tm, r->ydense);
-      if (! st)
-        st = call_events (r, tm, r->ydense, r->vtry);
+      int st = events_at (r, tm, r->vtry);
       if (st)
         return st;
       double gm = r->vtry[k];
@@ -224,28 +230,21 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
                       + 64 * DBL_EPSILON * fabs (tnew - t);
   const double dt = (tnew - t) / (ns + 1);
   int st;
-  /* the values at the samples, points 1..ns (0: t, ns + 1: tnew) */
-  for (int i = 1; i <= ns; i++)
-    {
-      double ti = t + (tnew - t) * ((double) i / (ns + 1));
-      double *vi = r->vs + (size_t) (i - 1) * ne;
-      st = r->type->dense (r->state, r->sys, ti, r->ydense);
-      if (! st)
-        st = call_events (r, ti, r->ydense, vi);
-      if (st)
-        return st;
-    }
+  /* points 0..ns + 1: t, the samples, tnew; their event values */
+#define PT(i) ((i) == ns + 1 ? tnew \
+               : t + (tnew - t) * ((double) (i) / (ns + 1)))
 #define VAL(i) ((i) == 0 ? r->vold : (i) == ns + 1 ? r->vnew \
                 : r->vs + (size_t) ((i) - 1) * ne)
+  for (int i = 1; i <= ns; i++)
+    if ((st = events_at (r, PT (i), VAL (i))))
+      return st;
   for (int j = 0; j <= ns; j++)
     {
-      double ta = j == 0 ? t : t + (tnew - t) * ((double) j / (ns + 1));
+      double ta = PT (j), tb = PT (j + 1);
       /* after a terminal event, only the events at its time (one on a
          sample point, another located an ulp after it) */
       if (! isnan (*tstop) && ! (fabs (ta - *tstop) <= same))
         break;
-      double tb = j == ns ? tnew
-                  : t + (tnew - t) * ((double) (j + 1) / (ns + 1));
       const double t0 = ta;
       const double *va = VAL (j), *vb = VAL (j + 1);
       /* vertices of a predicted zero pair in (ta, tb), as fractions of
@@ -279,9 +278,7 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
           if (! (r->dir * (tc - ta) > 0 && r->dir * (tb - tc) > 0))
             continue;
           double *vc = va == r->vca ? r->vcb : r->vca;
-          st = r->type->dense (r->state, r->sys, tc, r->ydense);
-          if (! st)
-            st = call_events (r, tc, r->ydense, vc);
+          st = events_at (r, tc, vc);
           if (! st)
             st = events_between (r, ta, va, tc, vc, same, tstop);
           if (st)
@@ -294,6 +291,7 @@ handle_events (run_t *r, double t, double tnew, double *tstop)
         return st;
     }
 #undef VAL
+#undef PT
   return SYM_SUCCESS;
 }
 

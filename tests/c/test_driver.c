@@ -341,6 +341,29 @@ setup (sym_system *sys, ho_user *hu, sym_driver_opts *o, const double *atol)
   memset (&S, 0, sizeof S);
 }
 
+/* A fixed-step run (h = 0.5, to tf = 10) of the exact flow from (t0, y)
+   with nevents events of ev (user data u), checked at the step points
+   and at that many samples inside each step; the events land in S. */
+static int
+run_events (sym_event_fn ev, int nevents, void *u, int samples, double t0,
+            const double *y, double *tr)
+{
+  sym_system sys;
+  ho_user hu;
+  sym_driver_opts o;
+  sym_method_opts mo;
+  double atol = 1e-8;
+  memset (&mo, 0, sizeof mo);
+  setup (&sys, &hu, &o, &atol);
+  o.t0 = t0;
+  o.h_fixed = 0.5;
+  o.nevents = nevents;
+  o.events = ev;
+  o.event_user = u;
+  o.event_samples = samples;
+  return sym_integrate (&exact_type, &sys, &mo, &o, y, tr);
+}
+
 int
 main (void)
 {
@@ -535,17 +558,10 @@ main (void)
         pu.terminal = run == 2;
         const double a = acos (pu.level);
         const double tz[3] = { a, 2 * M_PI - a, 2 * M_PI + a };
-        setup (&sys, &hu, &o, &atol);
-        o.h_fixed = 0.5;
-        o.nevents = 1;
-        o.events = ev_peak;
-        o.event_user = &pu;
-        o.event_samples = run ? 3 : 0;
         double y6[2] = { cos (6.0), -sin (6.0) };
-        if (pu.terminal)
-          o.t0 = 6.0;
-        st = sym_integrate (&exact_type, &sys, &mo, &o,
-                            pu.terminal ? y6 : y0, &tr);
+        st = run_events (ev_peak, 1, &pu, run ? 3 : 0,
+                         pu.terminal ? 6.0 : 0.0, pu.terminal ? y6 : y0,
+                         &tr);
         if (run == 0)
           CHECK (st == SYM_DONE && S.nev == 1
                  && fabs (S.te[0] - tz[0]) < 1e-14,
@@ -576,12 +592,7 @@ main (void)
      found at its own vertex, and the pairs of the first step too: all
      zeros, in time order */
   {
-    setup (&sys, &hu, &o, &atol);
-    o.h_fixed = 0.5;
-    o.nevents = 2;
-    o.events = ev_two_peaks;
-    o.event_samples = 3;
-    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    st = run_events (ev_two_peaks, 2, NULL, 3, 0.0, y0, &tr);
     const double a = acos (0.9999), c = 0.05;
     const double tz[7] = { a, c - a, c + a, 2 * M_PI - a, 2 * M_PI + a,
                            2 * M_PI + c - a, 2 * M_PI + c + a };
@@ -601,12 +612,7 @@ main (void)
   /* a terminal event on a sample point and another two ulps after it, in
      the next piece: both reported at the stop, as within one piece */
   {
-    setup (&sys, &hu, &o, &atol);
-    o.h_fixed = 0.5;
-    o.nevents = 2;
-    o.events = ev_at_sample;
-    o.event_samples = 3;
-    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    st = run_events (ev_at_sample, 2, NULL, 3, 0.0, y0, &tr);
     CHECK (st == SYM_STOP_EVENT && S.nev == 2 && S.te[0] == 1.125
            && S.ie[1] == 1 && fabs (S.te[1] - 1.125) < 1e-15
            && tr == 1.125,
