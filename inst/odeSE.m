@@ -95,8 +95,11 @@
 ## df/dy); @code{HamiltonianHessFcn}, a handle returning Hess(H); a second
 ## output of @var{fcn} giving Hess(H) (2d-by-2d or its column-major vector
 ## of (2d)^2 elements, as in @code{[dy, ddy] = fcn (t, y)}); finite
-## differences of @var{fcn} (2d extra evaluations).  With a forcing term
-## the Hessian misses dF/dy and Newton works as a quasi-Newton method; a
+## differences of @var{fcn} (2d extra evaluations; steps of sqrt(eps)
+## times the size of q for q's components, of p for p's: the largest of
+## the state's and of the run's steps so far, so that the units do not
+## matter).  With a forcing term the Hessian misses dF/dy and Newton
+## works as a quasi-Newton method; a
 ## Hessian off by a moderate factor (0 to 10, or of the wrong sign) costs
 ## iterations, not accuracy.  When Newton fails with the Jacobian or
 ## Hessian given and it differs from finite differences of @var{fcn} at

@@ -115,7 +115,10 @@
 ## Newton's matrix needs df/dy = J * Hess(H) at the nodes, from the first
 ## of: the @code{Jacobian} option (matrix or handle returning df/dy);
 ## @code{HamiltonianHessFcn} (handle returning Hess(H)); the second output
-## of @var{fcn}; finite differences of @var{fcn}.  The matrix is kept and
+## of @var{fcn}; finite differences of @var{fcn} (steps of sqrt(eps) times
+## the size of q for q's components, of p for p's: the largest of the
+## state's and of the run's steps so far, so that the units do not
+## matter).  The matrix is kept and
 ## reused while Newton converges fast, or new on every step (see
 ## NewtonMatrix).  @code{stats.jacobian_source} tells
 ## which source was used.  With the second output of @var{fcn}, one call

@@ -209,3 +209,52 @@
 %! [t, y] = odeSPVI (@rf_nan_after_1, [0 3], [1 0]);
 %! assert (lastwarn (), "");
 %! assert (t(end) > 0.95 && t(end) <= 1);
+
+%!test
+%! ## The finite differences scale with the problem: H = p^2/2 (1 + (q/a)^2) +
+%! ## q^2/2, whose solutions are a times those of a = 1, is solved alike
+%! ## at every scale.  Before, their steps of sqrt(eps) max(1, |y_i|) were
+%! ## 150 a at a = 1e-10: the fixed-step runs stopped at t = 0 ("Newton's
+%! ## method did not converge") and the adaptive ones failed 2562 steps of
+%! ## odeSV (none at a = 1).
+%! for s = all3
+%!   for adaptive = [false true]
+%!     r = {};
+%!     for a = [1 1e-10 1e10]
+%!       f = @(t, y) a * [y(2)/a * (1 + (y(1)/a)^2); -((y(2)/a)^2 * y(1)/a + y(1)/a)];
+%!       if (adaptive)
+%!         o = odeset ("RelTol", 1e-6, "AbsTol", 1e-6 * a);
+%!       else
+%!         o = struct ("TimeStepSize", 0.05);
+%!       endif
+%!       lastwarn ("");
+%!       r{end+1} = s{1} (f, [0 5], a * [0.8; 0.6], o);
+%!       assert (lastwarn (), "");
+%!       assert (r{end}.stats.jacobian_source, "finite differences of FCN");
+%!       assert (r{end}.x(end), 5);
+%!       ## the same steps (adaptive: up to the round-off of the controller,
+%!       ## which moves the steps by 1e-7 relative on odeSPVI's 18 steps)
+%!       assert (r{end}.x, r{1}.x, adaptive * 1e-6);
+%!       assert (r{end}.y / a, r{1}.y, adaptive * 1e-6 + 1e-14);
+%!       assert ([r{end}.stats.nsteps, r{end}.stats.nfailed], ...
+%!               [r{1}.stats.nsteps, r{1}.stats.nfailed]);
+%!     endfor
+%!   endfor
+%! endfor
+
+%!test
+%! ## so a right Hessian is not taken for a wrong one at a small scale:
+%! ## before, after a Newton failure the differences (wrong there) replaced
+%! ## it, and the runs at a = 1e-10 took 6 to 76 times the calls
+%! for s = all3
+%!   n = [];
+%!   for a = [1 1e-10]
+%!     f = @(t, y) a * [y(2)/a * (1 + (y(1)/a)^2); -((y(2)/a)^2 * y(1)/a + y(1)/a)];
+%!     hs = @(t, y) [(y(2)/a)^2 + 1, 2 * y(2)*y(1)/a^2; 2 * y(2)*y(1)/a^2, 1 + (y(1)/a)^2];
+%!     o = odeset ("RelTol", 1e-6, "AbsTol", 1e-6 * a, "InitialStep", 3, "MaxStep", 3);
+%!     sol = s{1} (f, [0 20], a * [0.8; 0.6], symplecticset (o, "HamiltonianHessFcn", hs));
+%!     assert (sol.stats.jacobian_source, "HamiltonianHessFcn");
+%!     n(end+1) = sol.stats.nfevals;
+%!   endfor
+%!   assert (n(2), n(1), 0.01 * n(1));
+%! endfor

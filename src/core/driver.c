@@ -425,7 +425,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
 
   int ne = o->nevents > 0 ? o->nevents : 0;
   const int ns = o->event_samples > 0 ? o->event_samples : 0;
-  double *work = sym_calloc ((size_t) 6 * n + (7 + (size_t) ns) * ne + 1,
+  double *work = sym_calloc ((size_t) 7 * n + (7 + (size_t) ns) * ne + 1,
                              sizeof (double));
   int *iwork = sym_calloc ((size_t) 3 * ne + 1, sizeof (int));
   if (! work || ! iwork)
@@ -438,7 +438,8 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
   double *y = work, *ynew = work + n, *yerr = work + 2 * n;
   double *ftmp = work + 3 * n;    /* 2n: initial step work */
   r.ydense = work + 5 * n;
-  r.vold = work + 6 * n;
+  double *ytyp = work + 6 * n;
+  r.vold = work + 7 * n;
   r.vnew = r.vold + ne;
   r.vtry = r.vnew + ne;
   r.tfound = r.vtry + ne;
@@ -450,6 +451,12 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
   r.edir = iwork + ne;
   r.kfound = iwork + 2 * ne;
   memcpy (y, y0, (size_t) n * sizeof (double));
+  /* the sizes of y's components for the finite differences (sym.h): the
+     largest |y_i| of the run's accepted states */
+  const double *ytyp_caller = sys->ytyp;
+  for (int i = 0; i < n; i++)
+    ytyp[i] = fabs (y[i]);
+  sys->ytyp = ytyp;
 
   double t = o->t0;
   int result = SYM_DONE;
@@ -684,6 +691,8 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
         }
       t = tnew;
       memcpy (y, ynew, (size_t) n * sizeof (double));
+      for (int i = 0; i < n; i++)
+        ytyp[i] = fmax (ytyp[i], fabs (y[i]));
       if (ne)
         memcpy (r.vold, r.vnew, (size_t) ne * sizeof (double));
       if (! fixed)
@@ -699,6 +708,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
     }
 
 done:
+  sys->ytyp = ytyp_caller;
   if (t_reached)
     *t_reached = t;
   sym_free (iwork);

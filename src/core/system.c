@@ -146,6 +146,32 @@ sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
 
 #define FD_BATCH_DOUBLES ((size_t) 1 << 19)
 
+/* The sizes of q and p at the state y that scale its difference steps
+   (see sym.h): the largest max(|y_i|, ytyp_i) over each half, the other
+   half's if it is zero, 1 if both are. */
+static void
+fd_sizes (const sym_system *sys, const double *y, double size[2])
+{
+  const int d = sys->dim;
+  for (int half = 0; half < 2; half++)
+    {
+      double s = 0.0;
+      for (int i = half * d; i < (half + 1) * d; i++)
+        {
+          s = fmax (s, fabs (y[i]));
+          if (sys->ytyp)
+            s = fmax (s, sys->ytyp[i]);
+        }
+      size[half] = s;
+    }
+  if (! (size[0] > 0))
+    size[0] = size[1];
+  if (! (size[1] > 0))
+    size[1] = size[0];
+  if (! (size[0] > 0))
+    size[0] = size[1] = 1.0;
+}
+
 /* Forward differences at k states (columns of y, times t, f0 their f):
    df holds k n-by-n Jacobians.  The step of column c balances truncation
    (~ delta) against round-off (~ eps / delta).  With a batch callback all
@@ -191,11 +217,14 @@ jac_fd_many (sym_system *sys, int k, const double *t, const double *y,
       memcpy (yp + j * n, y + j * n, (size_t) n * sizeof (double));
       tp[j] = t[j];
     }
+  double size[2] = { 1.0, 1.0 };
   for (size_t c = 0; c < cols; c++)
     {
       const double *yj = y + (c / n) * n;
       int i = (int) (c % n);
-      double d = sq * fmax (1.0, fabs (yj[i]));
+      if (i == 0)
+        fd_sizes (sys, yj, size);
+      double d = sq * size[i >= sys->dim];
       volatile double yi = yj[i] + d;   /* exact representable step */
       yv[c] = yi;
       del[c] = yi - yj[i];

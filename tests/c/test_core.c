@@ -4,6 +4,7 @@
 #include "sym.h"
 #include "testutil.h"
 
+#include <float.h>
 #include <string.h>
 
 static long nalloc = 0;
@@ -44,6 +45,35 @@ nonsep_jac (double t, const double *y, double *df, void *u)
   df[2] = 1 + q * q;          /* d fq / dp */
   df[3] = -2 * p * q;         /* d fp / dp */
   return 0;
+}
+
+/* The same H at the scale a: H = p^2/2 (1 + (q/a)^2) + q^2/2, whose
+   solutions are a times those of a = 1 (u points at a) */
+static int
+nonsep_a (double t, const double *y, double *dy, void *u)
+{
+  (void) t;
+  double a = *(const double *) u, q = y[0] / a, p = y[1] / a;
+  dy[0] = a * p * (1 + q * q);
+  dy[1] = -a * (p * p * q + q);
+  return 0;
+}
+
+/* f = (p, -q^3): the difference quotient of f_p in q at q = 0 is -del^2,
+   so it shows the step del */
+static int
+quartic (double t, const double *y, double *dy, void *u)
+{
+  (void) t; (void) u;
+  dy[0] = y[1];
+  dy[1] = -y[0] * y[0] * y[0];
+  return 0;
+}
+
+static int
+near (double x, double ref)
+{
+  return fabs (x - ref) <= 1e-12 * fabs (ref);
 }
 
 /* Newton test problem: x^3 - a = 0 componentwise, plus a coupling */
@@ -165,6 +195,51 @@ main (void)
   for (int i = 0; i < 4; i++)
     e = fmax (e, fabs (df[i] - dfa[i]));
   CHECK (e < 1e-7, "fd jacobian error %.3g", e);
+  /* The steps scale with the problem: nonsep at the scale a has the
+     Jacobian of a = 1 at y / a.  Before, with steps of sqrt(eps) max(1,
+     |y_i|), a = 1e-10 differenced over 1.5e-8 = 150 a: error 1e10. */
+  for (int ia = 0; ia < 3; ia++)
+    for (int iq = 0; iq < 2; iq++)
+      {
+        double a = ia == 0 ? 1e-10 : (ia == 1 ? 1.0 : 1e10);
+        double ys[2] = { iq ? 0.8 * a : 0.0, 0.6 * a }, u1[2] = { ys[0] / a,
+                                                                 0.6 };
+        double dfs[4], dfu[4];
+        sym_system sa;
+        memset (&sa, 0, sizeof sa);
+        sa.dim = 1;
+        sa.rhs = nonsep_a;
+        sa.user = &a;
+        nonsep_jac (0, u1, dfu, NULL);
+        CHECK (sym_jac (&sa, 0, ys, NULL, dfs) == 0, "fd jac, a = %g", a);
+        double es = 0;
+        for (int i = 0; i < 4; i++)
+          es = fmax (es, fabs (dfs[i] - dfu[i]));
+        CHECK (es < 1e-7, "fd jacobian at the scale %g, q = %g: error %.3g",
+               a, ys[0], es);
+      }
+  /* The step of q is sqrt(eps) times the size of q: max(|q|, ytyp_q), p's
+     size when q's is zero, 1 when both are */
+  {
+    const double sq = sqrt (DBL_EPSILON);
+    double yq[2] = { 0.0, 1e-3 }, dq[4], typ[2] = { 2.0, 0.0 };
+    sym_system sq4;
+    memset (&sq4, 0, sizeof sq4);
+    sq4.dim = 1;
+    sq4.rhs = quartic;
+    CHECK (sym_jac (&sq4, 0, yq, NULL, dq) == 0
+           && near (dq[1], -(sq * 1e-3) * (sq * 1e-3)), "step from p's size: "
+           "%.17g", dq[1]);
+    sq4.ytyp = typ;
+    CHECK (sym_jac (&sq4, 0, yq, NULL, dq) == 0
+           && near (dq[1], -(sq * 2.0) * (sq * 2.0)), "step from ytyp: %.17g",
+           dq[1]);
+    yq[1] = 0.0;
+    typ[0] = 0.0;
+    CHECK (sym_jac (&sq4, 0, yq, NULL, dq) == 0 && near (dq[1], -sq * sq),
+           "step 1 at y = 0: %.17g", dq[1]);
+  }
+
   /* with a batch callback: the same Jacobians, bit for bit, from one
      call per state (f given) or one call for all perturbed states of k
      states (sym_jac_many); counted in nfd */

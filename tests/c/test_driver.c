@@ -380,6 +380,8 @@ main (void)
   o.h_fixed = 0.3;
   st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
   CHECK (st == SYM_DONE, "status %s", sym_status_name (st));
+  /* the run's sizes for the finite differences were its own */
+  CHECK (sys.ytyp == NULL, "ytyp set back");
   CHECK (S.nrows == 35, "rows %d", S.nrows);   /* ceil(10/0.3) = 34 steps */
   CHECK (S.t[S.nrows - 1] == 10.0, "last t %.17g", S.t[S.nrows - 1]);
   CHECK_CLOSE (S.t[10], 3.0, 1e-15, "t_10 = t0 + 10 h, not accumulated");
