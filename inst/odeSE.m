@@ -22,7 +22,10 @@
 ## @end example
 ##
 ## @noindent
-## a column of length 2d.  The method is the variant with p implicit and q
+## a column of length 2d (any real numeric class, or a row or sparse:
+## taken as a full double column; logical, char or complex values are
+## errors, as are NaN or Inf at t0).  The method is the variant with p
+## implicit and q
 ## explicit:
 ##
 ## @example

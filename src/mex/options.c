@@ -74,6 +74,18 @@ symmex_describe (const mxArray *v, char *buf, size_t len)
 }
 
 const char *
+symmex_num (char *buf, size_t len, const char *fmt, double x)
+{
+  if (isnan (x))
+    snprintf (buf, len, "NaN");
+  else if (isinf (x))
+    snprintf (buf, len, x > 0 ? "Inf" : "-Inf");
+  else
+    snprintf (buf, len, fmt, x);
+  return buf;
+}
+
+const char *
 symmex_describe_fn (const mxArray *v, char *buf, size_t len)
 {
   char name[40];
@@ -110,8 +122,9 @@ pos_scalar (const char *solver, const mxArray *v, const char *name,
                        symmex_describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! (x > 0) || (! allow_inf && ! isfinite (x)))
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive %sscalar, got %g",
-                       solver, name, allow_inf ? "" : "finite ", x);
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive %sscalar, got %s",
+                       solver, name, allow_inf ? "" : "finite ",
+                       SYMMEX_NUM (x, "%g"));
   return x;
 }
 
@@ -125,8 +138,8 @@ pos_integer (const char *solver, const mxArray *v, const char *name,
                        solver, name, symmex_describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! isfinite (x) || x != floor (x))
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer, got %g",
-                       solver, name, x);
+    mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer, got %s",
+                       solver, name, SYMMEX_NUM (x, "%g"));
   if (x < lo || x > hi)
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be between %ld and %ld, got %g",
                        solver, name, lo, hi, x);
@@ -241,7 +254,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
           o->atol[i] = elem (v, i);
           if (! (o->atol[i] > 0) || ! isfinite (o->atol[i]))
             mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be positive and "
-                               "finite, got %g", solver, o->atol[i]);
+                               "finite, got %s", solver,
+                               SYMMEX_NUM (o->atol[i], "%g"));
         }
       o->atol_len = (int) k;
     }
@@ -280,7 +294,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
             double x = elem (v, i);
             if (x != floor (x) || x < 1 || x > n)
               mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must hold indices "
-                                 "between 1 and %d, got %g", solver, n, x);
+                                 "between 1 and %d, got %s", solver, n,
+                                 SYMMEX_NUM (x, "%g"));
             o->outputsel[o->noutputsel++] = (int) x - 1;
           }
     }
@@ -307,8 +322,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
           for (size_t i = 0; i < (size_t) n * n; i++)
             if (! isfinite (jv[i]))
               mexErrMsgIdAndTxt (BADARG, "%s: the Jacobian matrix must be "
-                                 "finite, element %d is %g", solver,
-                                 (int) i + 1, jv[i]);
+                                 "finite, element %d is %s", solver,
+                                 (int) i + 1, SYMMEX_NUM (jv[i], "%g"));
           o->jacobian = v;
         }
       else
@@ -328,8 +343,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                   ? pos_scalar (solver, v, "NewtonTol", 0) : 0;
   if (! (o->newton_tol < 1))
     mexErrMsgIdAndTxt (BADARG, "%s: NewtonTol must be below 1 (it is "
-                       "relative to the size of y), got %g", solver,
-                       o->newton_tol);
+                       "relative to the size of y), got %s", solver,
+                       SYMMEX_NUM (o->newton_tol, "%g"));
   o->max_newton = (v = field (opts, "MaxNewtonIterations"))
                   ? (int) pos_integer (solver, v, "MaxNewtonIterations", 1,
                                        1000) : 0;

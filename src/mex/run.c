@@ -94,14 +94,16 @@ take_double (mxArray **pa)
 }
 
 /* Check a value returned by a user's function: real numeric with k
-   elements; convert it to double if needed.  Returns a double array. */
+   elements (or logical, when logical_ok: the Events function's flags);
+   convert it to double if needed.  Returns a double array. */
 static const double *
 checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
-                double t, const char *expect_fmt, ...)
+                int logical_ok, double t, const char *expect_fmt, ...)
 {
   mxArray *a = take_full (pa);
   char buf[64];
-  if (! a || ! (mxIsNumeric (a) || mxIsLogical (a)) || mxIsComplex (a)
+  if (! a || ! (mxIsNumeric (a) || (logical_ok && mxIsLogical (a)))
+      || mxIsComplex (a)
       || mxGetNumberOfElements (a) != k)
     {
       /* what was expected, formatted only here: callbacks stay cheap */
@@ -277,7 +279,7 @@ cb_rhs (double t, const double *y, double *dy, void *user)
   mxGetPr (c->args[1])[0] = t;
   memcpy (mxGetPr (c->args[2]), y, sizeof (double) * c->n);
   call_user (1, out, c->nargs, c->args, c->fname);
-  const double *v = checked_values (c, out, c->n, "FCN", t,
+  const double *v = checked_values (c, out, c->n, "FCN", 0, t,
                                     "a vector of %d real elements", c->n);
   note_nonfinite (c, v, c->n, "FCN", t);
   memcpy (dy, v, sizeof (double) * c->n);
@@ -321,9 +323,9 @@ cb_rhs_batch (int k, const double *t, const double *y, double *dy,
   static const char *expect = "a %dx%d real matrix (Vectorized)";
   if (out[0] && (mxGetM (out[0]) != (size_t) c->n
                  || mxGetN (out[0]) != (size_t) k))
-    checked_values (c, out, (size_t) -1, "FCN", t[0], expect, c->n, k);
-  const double *v = checked_values (c, out, (size_t) c->n * k, "FCN", t[0],
-                                    expect, c->n, k);
+    checked_values (c, out, (size_t) -1, "FCN", 0, t[0], expect, c->n, k);
+  const double *v = checked_values (c, out, (size_t) c->n * k, "FCN", 0,
+                                    t[0], expect, c->n, k);
   note_nonfinite (c, v, (size_t) c->n * k, "FCN", t[0]);
   memcpy (dy, v, sizeof (double) * c->n * k);
   mxDestroyArray (out[0]);
@@ -343,17 +345,32 @@ hess_to_df (int d, const double *hs, double *df)
       }
 }
 
+/* a is n-by-n, or a row or column (or not yet known to hold n^2 elements:
+   checked_values says what it holds) */
+static int
+hessian_shape (const mxArray *a, int n)
+{
+  if (! a || mxGetNumberOfElements (a) != (size_t) n * n)
+    return 1;
+  if (mxGetNumberOfDimensions (a) != 2)
+    return 0;
+  size_t r = mxGetM (a), k = mxGetN (a);
+  return (r == (size_t) n && k == (size_t) n) || r == 1 || k == 1;
+}
+
 /* The Hessian of H (JAC_HESSFCN, JAC_FCN2) in out[0] -> df. */
 static void
 take_hessian (ctx_t *c, mxArray **out, double t, double *df)
 {
   int n = c->n;
   int fcn2 = c->jac_source == JAC_FCN2;
-  const double *v
-    = checked_values (c, out, (size_t) n * n,
-                      fcn2 ? "FCN (second output)" : "HamiltonianHessFcn",
-                      t, "the Hessian of H, a %dx%d matrix or a vector "
-                      "of %d elements", n, n, n * n);
+  const char *what = fcn2 ? "FCN (second output)" : "HamiltonianHessFcn";
+  static const char *expect = "the Hessian of H, a %dx%d matrix or a vector "
+                              "of %d elements";
+  if (! hessian_shape (out[0], n))
+    checked_values (c, out, (size_t) -1, what, 0, t, expect, n, n, n * n);
+  const double *v = checked_values (c, out, (size_t) n * n, what, 0, t,
+                                    expect, n, n, n * n);
   note_nonfinite (c, v, (size_t) n * n,
                   fcn2 ? "FCN's second output (the Hessian)"
                        : "HamiltonianHessFcn", t);
@@ -386,11 +403,11 @@ cb_jac (double t, const double *y, double *df, void *user)
       static const char *expect = "a %dx%d real matrix (df/dy)";
       if (out[0] && (mxGetM (out[0]) != (size_t) n
                      || mxGetN (out[0]) != (size_t) n))
-        checked_values (c, out, (size_t) -1, "the Jacobian function", t,
+        checked_values (c, out, (size_t) -1, "the Jacobian function", 0, t,
                         expect, n, n);
       const double *v = checked_values (c, out, (size_t) n * n,
-                                        "the Jacobian function", t, expect,
-                                        n, n);
+                                        "the Jacobian function", 0, t,
+                                        expect, n, n);
       note_nonfinite (c, v, (size_t) n * n, "the Jacobian function", t);
       memcpy (df, v, sizeof (double) * n * n);
     }
@@ -409,7 +426,7 @@ cb_rhs_jac (double t, const double *y, double *dy, double *df, void *user)
   memcpy (mxGetPr (c->args[2]), y, sizeof (double) * c->n);
   mxArray *out[2] = { NULL, NULL };
   call_user (2, out, c->nargs, c->args, c->fname);
-  const double *v = checked_values (c, out, c->n, "FCN", t,
+  const double *v = checked_values (c, out, c->n, "FCN", 0, t,
                                     "a vector of %d real elements", c->n);
   note_nonfinite (c, v, c->n, "FCN", t);
   memcpy (dy, v, sizeof (double) * c->n);
@@ -434,8 +451,9 @@ cb_events (double t, const double *y, double *value, int *isterminal,
                        "t = %.17g", c->solver, out[0] ? (out[1] ? 2 : 1) : 0,
                        t);
   const double *v = checked_values (c, &out[0], c->nevents,
-                                    "the Events function", t,
-                                    "%d real values", c->nevents);
+                                    "the Events function", 1, t,
+                                    "VALUE of %d real element%s", c->nevents,
+                                    c->nevents == 1 ? "" : "s");
   /* a NaN has no sign: no crossing could be told (and the located time
      of one next to it would be arbitrary) */
   for (int i = 0; i < c->nevents; i++)
@@ -447,11 +465,11 @@ cb_events (double t, const double *y, double *value, int *isterminal,
     {
       size_t ne = mxGetNumberOfElements (out[k]);
       if (ne != 1 && ne != (size_t) c->nevents)
-        checked_values (c, &out[k], c->nevents, "the Events function", t,
+        checked_values (c, &out[k], c->nevents, "the Events function", 1, t,
                         "ISTERMINAL and DIRECTION of the size of VALUE");
       const double *w = checked_values (c, &out[k], ne, "the Events function",
-                                        t, "ISTERMINAL and DIRECTION of the "
-                                        "size of VALUE");
+                                        1, t, "ISTERMINAL and DIRECTION of "
+                                        "the size of VALUE");
       for (int i = 0; i < c->nevents; i++)
         {
           double x = w[ne == 1 ? 0 : i];
@@ -461,8 +479,9 @@ cb_events (double t, const double *y, double *value, int *isterminal,
             direction[i] = (int) x;
           else
             mexErrMsgIdAndTxt (BADARG, "%s: the Events function must "
-                               "return DIRECTION of -1, 0 or 1, got %g at "
-                               "t = %.17g", c->solver, x, t);
+                               "return DIRECTION of -1, 0 or 1, got %s at "
+                               "t = %.17g", c->solver, SYMMEX_NUM (x, "%g"),
+                               t);
         }
     }
   for (int k = 0; k < 3; k++)
@@ -684,7 +703,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   for (int i = 0; i < ntspan; i++)
     if (! isfinite (tspan[i]))
       mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be finite, element %d is "
-                         "%g", name, i + 1, tspan[i]);
+                         "%s", name, i + 1, SYMMEX_NUM (tspan[i], "%g"));
   double dir = tspan[1] > tspan[0] ? 1 : -1;
   for (int i = 1; i < ntspan; i++)
     if (! (dir * (tspan[i] - tspan[i - 1]) > 0))
@@ -717,8 +736,8 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   const double *y0 = mxGetPr (y0d ? y0d : y0a);
   for (int i = 0; i < n; i++)
     if (! isfinite (y0[i]))
-      mexErrMsgIdAndTxt (BADARG, "%s: Y0 must be finite, element %d is %g",
-                         name, i + 1, y0[i]);
+      mexErrMsgIdAndTxt (BADARG, "%s: Y0 must be finite, element %d is %s",
+                         name, i + 1, SYMMEX_NUM (y0[i], "%g"));
 
   /* OPTS */
   symmex_opts o;
@@ -814,19 +833,18 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
     }
   if (! out[0])
     call_user (1, out, c->nargs, c->args, c->fname);
-  const double *f0 = checked_values (c, &out[0], n, "FCN", tspan[0],
+  const double *f0 = checked_values (c, &out[0], n, "FCN", 0, tspan[0],
                                      "a vector of %d real elements", n);
   for (int i = 0; i < n; i++)
     if (! isfinite (f0[i]))
-      mexErrMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned %g "
+      mexErrMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned %s "
                          "(element %d) at t = %.17g, the initial point",
-                         name, f0[i], i + 1, tspan[0]);
+                         name, SYMMEX_NUM (f0[i], "%g"), i + 1, tspan[0]);
   if (have2)
-    {
-      checked_values (c, &out[1], (size_t) n * n, "FCN (second output)",
-                      tspan[0], "the Hessian of H: %dx%d or %d elements", n,
-                      n, n * n);
-    }
+    checked_values (c, &out[1], hessian_shape (out[1], n) ? (size_t) n * n
+                                : (size_t) -1, "FCN (second output)", 0,
+                    tspan[0], "the Hessian of H, a %dx%d matrix or a vector "
+                    "of %d elements", n, n, n * n);
 
   /* the Jacobian source, in SPEC's order */
   c->jac_source = JAC_NONE;

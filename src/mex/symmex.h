@@ -61,6 +61,13 @@ const char *symmex_describe (const mxArray *v, char *buf, size_t len);
 /* the same for a value that should be a function; a name in quotes */
 const char *symmex_describe_fn (const mxArray *v, char *buf, size_t len);
 
+/* x for a message, as Octave writes it: printf's fmt ("%g", "%.17g"), or
+   NaN, Inf, -Inf (C's printf writes nan, -nan, inf); into buf, returned.
+   SYMMEX_NUM (x, fmt) gives it a buffer of its own, valid for the
+   statement it is in. */
+const char *symmex_num (char *buf, size_t len, const char *fmt, double x);
+#define SYMMEX_NUM(x, fmt) symmex_num ((char[40]) { 0 }, 40, (fmt), (x))
+
 /* a itself, or when a is sparse its full copy (freed when the MEX function
    returns, or by the caller): sparse arguments, options and values returned
    by the user's functions are taken as their full equivalents. */
