@@ -48,12 +48,13 @@
 ## elements, rows exactly at those times, taken from the dense output
 ## without shortening any step.  tf < t0 integrates backwards.  @var{y0} =
 ## [q0; p0] is a real vector of even length (row or column).  @var{opts}
-## is a struct or [] for the defaults.  Extra arguments @var{par1},
+## is a struct, or any empty value ([], @{@}, '') for the defaults.  Extra
+## arguments @var{par1},
 ## @dots{} come after it and are passed to @var{fcn} (and to the
 ## Jacobian, Hessian, Events and OutputFcn functions) after t and y;
-## unlike Octave's @code{ode45}, a fourth argument that is not a struct is
-## refused rather than taken as @var{par1} (pass [] before the
-## parameters).  @var{t} is a column; @var{y} has one row per time, in
+## unlike Octave's @code{ode45}, a fourth argument that is neither a struct
+## nor empty is refused rather than taken as @var{par1} (pass [] before
+## the parameters).  @var{t} is a column; @var{y} has one row per time, in
 ## double precision whatever the class of @var{tspan} and @var{y0}.  With
 ## one output, @var{sol} is a struct with the fields of @code{ode45}:
 ## @code{x} (row of times), @code{y} (one column per time),
@@ -62,7 +63,8 @@
 ## @code{odeplot}.
 ##
 ## @strong{Options} (@code{odeset} fields, or @code{symplecticset} for the
-## package's own fields without warnings; names match in any case):
+## package's own fields without warnings; names match in any case, and a
+## struct that sets one name in two spellings is refused):
 ##
 ## @table @code
 ## @item TimeStepSize, TimeStepNumber

@@ -71,6 +71,10 @@
 ## empties the fields of @var{oldopts} that are empty in @var{newopts},
 ## @code{symplecticset} does not), a name/value pair always.
 ##
+## The result holds all the package's fields (empty unless set), so
+## @code{odeset (opts, @dots{})} warns once for each of them, set or not;
+## add options to such a struct with @code{symplecticset (opts, @dots{})}.
+##
 ## Setting a field by assignment, @code{opts.Q_DoFs = 4}, works as well;
 ## scripts written for the 2013 odepkg solvers, which passed these names to
 ## @code{odeset}, keep working (with @code{odeset}'s warning).
@@ -176,6 +180,17 @@ function [ours, names, vals] = put (ours, names, vals, fields, name, v, always)
     vals{k} = v;
   endif
 endfunction
+
+## odeset warns for the package's fields of a symplecticset struct (the
+## help says so); symplecticset adds to it without a warning
+%!test
+%! lastwarn ("");
+%! evalc ("o = odeset (symplecticset ('Nodes', 4), 'RelTol', 1e-6);");
+%! assert (regexp (lastwarn (), "unknown option"));
+%! lastwarn ("");
+%! o = symplecticset (symplecticset ("Nodes", 4), "RelTol", 1e-6);
+%! assert (lastwarn (), "");
+%! assert ([o.Nodes, o.RelTol], [4 1e-6]);
 
 %!test
 %! opts = symplecticset ("TimeStepSize", 0.1, "q_dofs", 4, "RelTol", 1e-5);

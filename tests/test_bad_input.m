@@ -261,6 +261,26 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN \\(second output\\) must return .*got 1x1 cell at t = 0", @(t, y) bi_hess2 (t, y, {1}), [0 1], y0);
 
 ## ------------------------------------------------------------ OPTS
+## two fields of one name in different cases, both set: which to take?
+## (before, the first, silently); one of them empty is no conflict
+%!test check_bad (all3, "Octave:invalid-input-arg", "OPTS sets both RelTol and reltol \\(names are matched in any case\\); give one of them", f, [0 1], y0, struct ("RelTol", 1e-3, "reltol", 1e-5));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "OPTS sets both Nodes and nodes", f, [0 1], y0, struct ("Nodes", 3, "nodes", 5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OPTS sets both Events and EVENTS", f, [0 1], y0, struct ("Events", @(t, y) deal (y(1), 0, 0), "EVENTS", @(t, y) deal (y(2), 0, 0)));
+%!test
+%! o = symplecticset ("TimeStepSize", 0.1);
+%! o.nodes = 4;                     # o.Nodes is there, empty
+%! sol = odeSPVI (f, [0 1], y0, o);
+%! assert (sol.Nodes, 4);
+
+## any empty OPTS is the defaults (the help says so)
+%!test
+%! for s = all3
+%!   [t0, y0d] = s{1} (f, [0 1], y0);
+%!   for e = {[], {}, "", zeros(0, 3)}
+%!     [t, y] = s{1} (f, [0 1], y0, e{1});
+%!     assert ([t, y], [t0, y0d]);
+%!   endfor
+%! endfor
 %!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct from odeset or symplecticset \\(or a plain 1x1 struct\\), got 1x1 double", f, [0 1], y0, 5);
 %!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct .*got 1x6 char", f, [0 1], y0, "RelTol");
 %!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct .*got 1x2 struct", f, [0 1], y0, struct ("RelTol", {1e-3, 1e-4}));

@@ -25,21 +25,33 @@ name_eq (const char *a, const char *b)
   return *a == *b;
 }
 
-/* The first non-empty field whose name matches (any case). */
+/* the solver whose options are being read, for field's message */
+static const char *field_solver = "";
+
+/* The non-empty field whose name matches (any case); two of them (a
+   struct with Nodes and nodes both set) are an error: which to take? */
 static const mxArray *
 field (const mxArray *s, const char *name)
 {
   if (! s)
     return NULL;
-  int nf = mxGetNumberOfFields (s);
+  int nf = mxGetNumberOfFields (s), found = -1;
+  const mxArray *v = NULL;
   for (int i = 0; i < nf; i++)
     if (name_eq (mxGetFieldNameByNumber (s, i), name))
       {
-        const mxArray *v = mxGetFieldByNumber (s, 0, i);
-        if (v && ! mxIsEmpty (v))
-          return symmex_full (v);
+        const mxArray *vi = mxGetFieldByNumber (s, 0, i);
+        if (! vi || mxIsEmpty (vi))
+          continue;
+        if (found >= 0)
+          mexErrMsgIdAndTxt (BADARG, "%s: OPTS sets both %s and %s (names "
+                             "are matched in any case); give one of them",
+                             field_solver, mxGetFieldNameByNumber (s, found),
+                             mxGetFieldNameByNumber (s, i));
+        found = i;
+        v = vi;
       }
-  return NULL;
+  return v ? symmex_full (v) : NULL;
 }
 
 static int
@@ -229,6 +241,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
   const mxArray *v;
   char buf[64];
   memset (o, 0, sizeof (*o));
+  field_solver = solver;
   if (opts && ! mxIsEmpty (opts)
       && ! (mxIsStruct (opts) && mxGetNumberOfElements (opts) == 1))
     mexErrMsgIdAndTxt (BADARG, "%s: OPTS must be a struct from odeset or "
