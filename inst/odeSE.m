@@ -123,7 +123,10 @@
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
-## As in @code{ode45}.  A value that @code{OutputFcn} returns stops the
+## As in @code{ode45}; also, scalar ISTERMINAL and DIRECTION hold for every
+## element of VALUE, @code{OutputSel} may be a logical mask, and the
+## options that take @qcode{"on"} or @qcode{"off"} take true or false too.
+## A value that @code{OutputFcn} returns stops the
 ## run when @code{if} would take it as true (all its elements nonzero; a
 ## char too); NaN, and values other than logical, char or real numeric,
 ## are errors.  Event times, output times and refined rows come

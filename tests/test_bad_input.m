@@ -167,6 +167,7 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 2x2 double", f, [0 1; 2 3], y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 complex double", f, sparse ([0 1i]), y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x2 logical", f, [false true], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must be a real vector .*got 1x1x2 double", f, reshape ([0 1], 1, 1, 2), y0);
 %!test check_bad (all3, "Octave:invalid-input-arg", "TSPAN must span a finite interval", f, [-realmax realmax], y0);
 
 ## (sparse arguments, options and returned values are taken as full: a
@@ -296,6 +297,9 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be positive and finite, got NaN", f, [0 1], y0, struct ("AbsTol", NaN));
 %!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be a positive scalar or a vector of 2 elements \\(numel \\(Y0\\)\\), got 1x3 double", f, [0 1], y0, struct ("AbsTol", [1 2 3]));
 %!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be a positive scalar or a vector of 2 elements .*got 1x1 char", f, [0 1], y0, struct ("AbsTol", "a"));
+## numel (Y0) elements, but not a vector (ode45 refuses it too)
+%!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be a positive scalar or a vector of 4 elements .*got 2x2 double", @(t, y) [y(3:4); -y(1:2)], [0 1], [1 0 0 1], struct ("AbsTol", 1e-6 * ones (2)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be .*got 1x1x2 double", f, [0 1], y0, struct ("AbsTol", 1e-6 * ones (1, 1, 2)));
 %!test check_bad (all3, "Octave:invalid-input-arg", "AbsTol must be a scalar when NormControl is \"on\"", f, [0 1], y0, struct ("AbsTol", [1 2], "NormControl", "on"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "MaxStep must be a positive scalar, got 0", f, [0 1], y0, struct ("MaxStep", 0));
 %!test check_bad (all3, "Octave:invalid-input-arg", "MaxStep must be a positive scalar, got -1", f, [0 1], y0, struct ("MaxStep", -1));

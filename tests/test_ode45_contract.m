@@ -866,3 +866,37 @@
 %!   assert (! isempty (strfind (msg, "ends at t = 0.3")));
 %!   assert (t, [0; 0.05]);
 %! endfor
+
+%!function stop = outsel_rec (t, y, flag)
+%!  global OUTSEL_Y
+%!  if (isempty (flag) || strcmp (flag, "init"))
+%!    OUTSEL_Y = [OUTSEL_Y, y(:, end)'];   # init: y0; then one row a step
+%!  endif
+%!  stop = false;
+%!endfunction
+
+## what the help says the solvers take beyond ode45: scalar ISTERMINAL
+## and DIRECTION for a VALUE of several events, OutputSel as a logical
+## mask, true/false for "on"/"off"
+%!test
+%! f = @(t, y) [y(2); -y(1)];
+%! for s = {@odeSE, @odeSV, @odeSPVI}
+%!   o = struct ("TimeStepSize", 0.01, "Events", @(t, y) deal ([y(1); y(2)], 0, -1));
+%!   [t, y, te, ye, ie] = s{1} (f, [0 4], [1 0], o);
+%!   ## y(1) = cos t falls through 0 at pi/2; y(2) = -sin t at 0 (t0: not
+%!   ## an event) and falls through 0 again only at 2 pi
+%!   assert (ie(:)', 1);
+%!   assert (te, pi/2, 1e-2);          # odeSE, order 1: 1.5658
+%!   assert (abs (ye(1)) < 1e-10);
+%!   global OUTSEL_Y
+%!   for sel = {[false true], 2}
+%!     OUTSEL_Y = [];
+%!     [t1, y1] = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "OutputSel", sel{1}, "OutputFcn", @outsel_rec));
+%!     assert (OUTSEL_Y, y1(:, 2)');   # only y(2) went to OutputFcn
+%!   endfor
+%!   sa = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "Stats", true));
+%!   sb = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "Separable", true, "Stats", "on"));
+%!   sc = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "Separable", "on"));
+%!   assert (sb.y, sc.y);
+%!   assert (sb.stats.nfevals, sc.stats.nfevals);
+%! endfor

@@ -258,7 +258,9 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
   if ((v = field (opts, "AbsTol")))
     {
       size_t k = mxGetNumberOfElements (v);
-      if (! is_real_numeric (v) || (k != 1 && k != (size_t) n))
+      if (! is_real_numeric (v) || (k != 1 && k != (size_t) n)
+          || mxGetNumberOfDimensions (v) != 2
+          || (mxGetM (v) != 1 && mxGetN (v) != 1))
         mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a positive scalar or "
                            "a vector of %d elements (numel (Y0)), got %s",
                            solver, n, symmex_describe (v, buf, sizeof buf));

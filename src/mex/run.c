@@ -693,6 +693,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   /* TSPAN */
   const mxArray *ts = symmex_full (prhs[1]);
   if (! is_plain_numeric (ts) || mxGetNumberOfElements (ts) < 2
+      || mxGetNumberOfDimensions (ts) != 2
       || (mxGetM (ts) != 1 && mxGetN (ts) != 1))
     mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be a real vector [T0, TF] or "
                        "[T0, T1, ..., TF] of at least 2 elements, got %s",
