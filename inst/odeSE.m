@@ -175,7 +175,8 @@
 ## function of the user's ends the run with that error; bad
 ## arguments raise errors with the identifier
 ## @code{Octave:invalid-input-arg} whose message begins with the solver's
-## name.
+## name, and a NaN or Inf from @var{fcn} at t0 (where no smaller step can
+## help) an error with the identifier @code{symplectic:nonfinite}.
 ##
 ## Example: a pendulum with a fixed step.
 ##

@@ -224,7 +224,8 @@
 ## error in a function of the user's ends the run with that error; bad
 ## arguments raise errors with the identifier
 ## @code{Octave:invalid-input-arg} whose message begins with the solver's
-## name.
+## name, and a NaN or Inf from @var{fcn} at t0 (where no smaller step can
+## help) an error with the identifier @code{symplectic:nonfinite}.
 ##
 ## Example: Kepler's problem (eccentricity 0.6) over 100 periods with a
 ## fixed step; the energy error stays bounded.  The Hessian is built only
