@@ -119,6 +119,11 @@ function status = memcheck_run ()
     nbad += expect_error (s, "Octave:invalid-input-arg", @(t, y) [1; 2; 3], [0 1], [1 0]);
     nbad += expect_error (s, "Octave:invalid-input-arg", @(t, y) [y(2); -y(1)] + (t > 0.5) * 1i, [0 1], [1 0]);
     nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("Jacobian", @(t, y) ones (3)));
+    ## a Hessian of the wrong shape, one name set twice, a NaN in Y0 (its
+    ## message formatted by SYMMEX_NUM)
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("HamiltonianHessFcn", @(t, y) reshape (eye (2), 1, 2, 2)));
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("RelTol", 1e-3, "reltol", 1e-4));
+    nbad += expect_error (s, "Octave:invalid-input-arg", osc, [0 1], [1 0/0]);
     nbad += expect_error (s, "mc:fcn", @(t, y) mc_fail_after (t, y, 0.5), [0 1], [1 0]);
     nbad += expect_error (s, "mc:fcn", @(t, y) mc_fail_after (t, y, 0.5), [0 1], [1 0], struct ("TimeStepSize", 0.01, "Refine", 2));
     nbad += expect_error (s, "mc:ev", osc, [0 1], [1 0], struct ("Events", @(t, y) mc_ev_fail (t, y)));
