@@ -70,7 +70,7 @@
 ##
 ## @strong{Options} (@code{odeset} fields, or @code{symplecticset} for the
 ## package's own fields without warnings; names match in any case, and a
-## struct that sets one name in two spellings is refused):
+## struct that sets one of these options in two spellings is refused):
 ##
 ## @table @code
 ## @item Nodes (alias P_DoFs), Q_DoFs, PolynomialDegree

@@ -213,6 +213,12 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return .*got 1x2 char at t = 0\\.[5-9]", @(t, y) bi_late (t, y, "char"), [0 1], y0, struct ("TimeStepSize", 0.1));
 ## (odeSPVI evaluates its nodes in one call)
 %!test check_bad (spvi, "Octave:invalid-input-arg", "FCN must return a 2x[0-9]+ real matrix \\(Vectorized\\), got 2x1 double at t = ", f, [0 1], y0, struct ("Vectorized", "on"));
+## the right numbers of elements in more dimensions (mxGetN multiplies the
+## trailing ones: these were taken)
+%!test check_bad (spvi, "Octave:invalid-input-arg", "FCN must return a 2x[0-9]+ real matrix \\(Vectorized\\), got 2x1x[0-9]+ double at t = ", @(t, y) reshape ([y(2, :); -y(1, :)], 2, 1, columns (y)), [0 1], y0, struct ("Vectorized", "on"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be a function handle or a real 2x2 matrix \\(df/dy\\), got 2x1x2 double", f, [0 1], y0, struct ("Jacobian", reshape ([0 -1 1 0], 2, 1, 2)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Jacobian function must return a 2x2 real matrix \\(df/dy\\), got 2x1x2 double at t = ", f, [0 1], y0, struct ("Jacobian", @(t, y) reshape ([0 -1 1 0], 2, 1, 2)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must be a vector of indices into Y0, got 2x2 double", f, [0 1], y0, struct ("OutputSel", [1 2; 2 1]));
 
 ## ------------------------------------------------------------ errors of the user's functions
 %!test check_bad (all3, "mytest:boom", "^my failure 42$", @(t, y) error ("mytest:boom", "my failure %d", 42), [0 1], y0);

@@ -894,9 +894,18 @@
 %!     [t1, y1] = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "OutputSel", sel{1}, "OutputFcn", @outsel_rec));
 %!     assert (OUTSEL_Y, y1(:, 2)');   # only y(2) went to OutputFcn
 %!   endfor
-%!   sa = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "Stats", true));
-%!   sb = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "Separable", true, "Stats", "on"));
+%!   clear -global OUTSEL_Y
+%!   out = evalc ("sa = s{1} (f, [0 1], [1 0], struct ('TimeStepSize', 0.1, 'Stats', true));");
+%!   assert (regexp (out, "successful steps"));
+%!   out = evalc ("sa = s{1} (f, [0 1], [1 0], struct ('TimeStepSize', 0.1, 'Stats', false));");
+%!   assert (out, "");
+%! endfor
+%! ## odeSE and odeSV: Separable true is "on" (explicit steps, no Newton)
+%! for s = {@odeSE, @odeSV}
+%!   sb = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "Separable", true));
 %!   sc = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "Separable", "on"));
+%!   sd = s{1} (f, [0 1], [1 0], struct ("TimeStepSize", 0.1, "Separable", false));
 %!   assert (sb.y, sc.y);
-%!   assert (sb.stats.nfevals, sc.stats.nfevals);
+%!   assert ([sb.stats.nnewton, sc.stats.nnewton], [0 0]);
+%!   assert (sd.stats.nnewton > 0);
 %! endfor

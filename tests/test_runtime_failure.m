@@ -245,7 +245,7 @@
 %!test
 %! ## so a right Hessian is not taken for a wrong one at a small scale:
 %! ## before, after a Newton failure the differences (wrong there) replaced
-%! ## it, and the runs at a = 1e-10 took 6 to 76 times the calls
+%! ## it, and the runs at a = 1e-10 took 3 to 74 times the calls
 %! for s = all3
 %!   n = [];
 %!   for a = [1 1e-10]

@@ -85,6 +85,20 @@ symmex_describe (const mxArray *v, char *buf, size_t len)
   return buf;
 }
 
+int
+symmex_is_size (const mxArray *a, size_t r, size_t k)
+{
+  return mxGetNumberOfDimensions (a) == 2 && mxGetM (a) == r
+         && mxGetN (a) == k;
+}
+
+int
+symmex_is_vector (const mxArray *a)
+{
+  return mxGetNumberOfDimensions (a) == 2
+         && (mxGetM (a) == 1 || mxGetN (a) == 1);
+}
+
 const char *
 symmex_num (char *buf, size_t len, const char *fmt, double x)
 {
@@ -259,8 +273,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
     {
       size_t k = mxGetNumberOfElements (v);
       if (! is_real_numeric (v) || (k != 1 && k != (size_t) n)
-          || mxGetNumberOfDimensions (v) != 2
-          || (mxGetM (v) != 1 && mxGetN (v) != 1))
+          || ! symmex_is_vector (v))
         mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a positive scalar or "
                            "a vector of %d elements (numel (Y0)), got %s",
                            solver, n, symmex_describe (v, buf, sizeof buf));
@@ -288,7 +301,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
   if ((v = field (opts, "OutputSel")))
     {
       size_t k = mxGetNumberOfElements (v);
-      if (! is_real_numeric (v) && ! mxIsLogical (v))
+      if ((! is_real_numeric (v) && ! mxIsLogical (v))
+          || ! symmex_is_vector (v))
         mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must be a vector of "
                            "indices into Y0, got %s", solver,
                            symmex_describe (v, buf, sizeof buf));
@@ -323,8 +337,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
     {
       if (symmex_is_function (v))
         o->jacobian = v;
-      else if (is_real_numeric (v) && mxGetM (v) == (size_t) n
-               && mxGetN (v) == (size_t) n)
+      else if (is_real_numeric (v) && symmex_is_size (v, n, n))
         {
           if (! mxIsDouble (v))
             {

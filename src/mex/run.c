@@ -94,7 +94,8 @@ take_double (mxArray **pa)
 }
 
 /* Check a value returned by a user's function: real numeric with k
-   elements (or logical, when logical_ok: the Events function's flags);
+   elements (or logical, when logical_ok: the Events function's VALUE and
+   flags, as ode45 takes them);
    convert it to double if needed.  Returns a double array. */
 static const double *
 checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
@@ -321,8 +322,7 @@ cb_rhs_batch (int k, const double *t, const double *y, double *dy,
   c->args[1] = t1;
   c->args[2] = y1;
   static const char *expect = "a %dx%d real matrix (Vectorized)";
-  if (out[0] && (mxGetM (out[0]) != (size_t) c->n
-                 || mxGetN (out[0]) != (size_t) k))
+  if (out[0] && ! symmex_is_size (out[0], c->n, k))
     checked_values (c, out, (size_t) -1, "FCN", 0, t[0], expect, c->n, k);
   const double *v = checked_values (c, out, (size_t) c->n * k, "FCN", 0,
                                     t[0], expect, c->n, k);
@@ -352,10 +352,7 @@ hessian_shape (const mxArray *a, int n)
 {
   if (! a || mxGetNumberOfElements (a) != (size_t) n * n)
     return 1;
-  if (mxGetNumberOfDimensions (a) != 2)
-    return 0;
-  size_t r = mxGetM (a), k = mxGetN (a);
-  return (r == (size_t) n && k == (size_t) n) || r == 1 || k == 1;
+  return symmex_is_size (a, n, n) || symmex_is_vector (a);
 }
 
 /* The Hessian of H (JAC_HESSFCN, JAC_FCN2) in out[0] -> df. */
@@ -401,8 +398,7 @@ cb_jac (double t, const double *y, double *df, void *user)
   if (c->jac_source == JAC_FCN)
     {
       static const char *expect = "a %dx%d real matrix (df/dy)";
-      if (out[0] && (mxGetM (out[0]) != (size_t) n
-                     || mxGetN (out[0]) != (size_t) n))
+      if (out[0] && ! symmex_is_size (out[0], n, n))
         checked_values (c, out, (size_t) -1, "the Jacobian function", 0, t,
                         expect, n, n);
       const double *v = checked_values (c, out, (size_t) n * n,
@@ -693,8 +689,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   /* TSPAN */
   const mxArray *ts = symmex_full (prhs[1]);
   if (! is_plain_numeric (ts) || mxGetNumberOfElements (ts) < 2
-      || mxGetNumberOfDimensions (ts) != 2
-      || (mxGetM (ts) != 1 && mxGetN (ts) != 1))
+      || ! symmex_is_vector (ts))
     mexErrMsgIdAndTxt (BADARG, "%s: TSPAN must be a real vector [T0, TF] or "
                        "[T0, T1, ..., TF] of at least 2 elements, got %s",
                        name, symmex_describe (ts, buf, sizeof buf));
@@ -718,9 +713,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
 
   /* Y0 */
   const mxArray *y0a = symmex_full (prhs[2]);
-  if (! is_plain_numeric (y0a) || mxIsEmpty (y0a)
-      || mxGetNumberOfDimensions (y0a) != 2
-      || (mxGetM (y0a) != 1 && mxGetN (y0a) != 1))
+  if (! is_plain_numeric (y0a) || mxIsEmpty (y0a) || ! symmex_is_vector (y0a))
     {
       if (mxIsComplex (y0a))
         mexErrMsgIdAndTxt (BADARG, "%s: Y0 must be real, got a complex "

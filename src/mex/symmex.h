@@ -55,6 +55,12 @@ void symmex_parse_options (const char *solver, const mxArray *opts, int n,
    of another file)? */
 int symmex_is_function (const mxArray *a);
 
+/* a is an r-by-k matrix (two dimensions: mxGetN multiplies the trailing
+   ones) */
+int symmex_is_size (const mxArray *a, size_t r, size_t k);
+/* a is a vector: two dimensions, one of them 1 */
+int symmex_is_vector (const mxArray *a);
+
 /* "1x2 double", "2x2 sparse double", "1x1 complex double", "1x3 char": what
    the user gave, for messages (into buf, returned) */
 const char *symmex_describe (const mxArray *v, char *buf, size_t len);
