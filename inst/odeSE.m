@@ -101,9 +101,10 @@
 ## output of @var{fcn} giving Hess(H) (2d-by-2d or its column-major vector
 ## of (2d)^2 elements, as in @code{[dy, ddy] = fcn (t, y)}); finite
 ## differences of @var{fcn} (2d extra evaluations; steps of sqrt(eps)
-## times the size of q for q's components, of p for p's: the largest of
-## the state's and of the run's steps so far, so that the units do not
-## matter).  With a forcing term the Hessian misses dF/dy and Newton
+## times each component's size, the largest it has had in the run, and at
+## least 1e-6 times the largest size among q's components for q's, among
+## p's for p's: a problem and the same problem scaled take the same
+## steps).  With a forcing term the Hessian misses dF/dy and Newton
 ## works as a quasi-Newton method; a
 ## Hessian off by a moderate factor (0 to 10, or of the wrong sign) costs
 ## iterations, not accuracy.  When Newton fails with the Jacobian or

@@ -117,9 +117,10 @@
 ## of: the @code{Jacobian} option (matrix or handle returning df/dy);
 ## @code{HamiltonianHessFcn} (handle returning Hess(H)); the second output
 ## of @var{fcn}; finite differences of @var{fcn} (steps of sqrt(eps) times
-## the size of q for q's components, of p for p's: the largest of the
-## state's and of the run's steps so far, so that the units do not
-## matter).  The matrix is kept and
+## each component's size, the largest it has had in the run, and at least
+## 1e-6 times the largest size among q's components for q's, among p's
+## for p's: a problem and the same problem scaled take the same steps).
+## The matrix is kept and
 ## reused while Newton converges fast, or new on every step (see
 ## NewtonMatrix).  @code{stats.jacobian_source} tells
 ## which source was used.  With the second output of @var{fcn}, one call

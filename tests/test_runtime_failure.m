@@ -258,3 +258,32 @@
 %!   endfor
 %!   assert (n(2), n(1), 0.01 * n(1));
 %! endfor
+
+%!test
+%! ## components of one half of very different sizes: two uncoupled
+%! ## oscillators, q = (0, 0.8) and p = (1e10, 0.6), the second nonlinear
+%! ## at size 1.  Each component is differenced at its own size (and at
+%! ## least 1e-6 times its half's largest); a rule tried first, steps from
+%! ## the largest size of the half, stopped the fixed-step runs at t = 0,
+%! ## 2.1 and 2.35, and adaptive odeSPVI took 25061 calls
+%! f = @(t, y) [y(3); y(4) * (1 + y(2)^2); -y(1); -(y(4)^2 * y(2) + y(2))];
+%! g = @(t, y) [y(2) * (1 + y(1)^2); -(y(2)^2 * y(1) + y(1))];
+%! ## (Newton's test measures the state with one size, 1e10 here, so the
+%! ## small oscillator is converged less tightly than alone: its energy
+%! ## error is compared, not its values)
+%! H = @(q, p) p.^2/2 .* (1 + q.^2) + q.^2/2;
+%! for s = all3
+%!   lastwarn ("");
+%!   ref = s{1} (g, [0 5], [0.8; 0.6], struct ("TimeStepSize", 0.05));
+%!   sol = s{1} (f, [0 5], [0; 0.8; 1e10; 0.6], struct ("TimeStepSize", 0.05));
+%!   assert (lastwarn (), "");
+%!   assert (sol.x(end), 5);
+%!   dh = max (abs (H (sol.y(2, :), sol.y(4, :)) - H (0.8, 0.6)));
+%!   dhref = max (abs (H (ref.y(1, :), ref.y(2, :)) - H (0.8, 0.6)));
+%!   assert (dh, dhref, 0.1 * dhref + 1e-6);
+%!   assert (sol.y([1 3], end), [1e10 * sin(5); 1e10 * cos(5)], 1e10 * 0.05);
+%!   ref = s{1} (g, [0 5], [0.8; 0.6], odeset ("RelTol", 1e-6, "AbsTol", 1e-6));
+%!   sol = s{1} (f, [0 5], [0; 0.8; 1e10; 0.6], odeset ("RelTol", 1e-6, "AbsTol", 1e-6 * [1 1 1e10 1]));
+%!   assert (lastwarn (), "");
+%!   assert (sol.stats.nfevals < 1.5 * ref.stats.nfevals + 200);
+%! endfor

@@ -117,12 +117,14 @@ typedef struct {
    calls).  sym_jac uses sys->jac, or forward differences of rhs when it is
    NULL (n extra rhs calls, counted in nfd), with f0 = f(t, y) if the caller
    has it (else NULL: one more call).  The difference step of y_i is
-   sqrt(eps) times the size of y's half that holds it (q or p): the largest
-   of max(|y_j|, ytyp_j) over that half; when it is zero, that of the other
-   half; when both are, 1.  So it scales with the problem (a system whose
-   q and p are of size 1e-10 is differenced as one of size 1), q and p may
-   have different units, and a component near zero, or of round-off size,
-   is stepped by as much as the others of its half. */
+   sqrt(eps) times its size: max(|y_i|, ytyp_i), and at least 1e-6 times
+   the largest such size in its half (q or p); in a half that is all zero,
+   the other half's largest, or 1 if both are.  Without ytyp every
+   component of a half takes the half's largest size.  So the steps scale
+   with the problem (a system whose q and p are of size 1e-10 is
+   differenced as one of size 1), q and p may have different units, and a
+   component that passes through zero keeps the step of its largest size
+   in the run. */
 int sym_rhs (sym_system *sys, double t, const double *y, double *dy);
 int sym_rhs_many (sym_system *sys, int k, const double *t, const double *y,
                   double *dy);
@@ -145,9 +147,9 @@ int sym_rhs_jac_many (sym_system *sys, int k, const double *t,
 int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
                  double *df);
 /* How far the user's Df may differ from forward differences: a tenth
-   (the differences, with steps of sqrt(eps) times the size of q or p,
-   err by 1% where f varies on a scale far below it, a pendulum at q =
-   1e6; a missing damping c against a Hessian of size 1 differs by c).
+   (the differences, with steps of sqrt(eps) times the size of y_i, err
+   by 1% where f varies on a scale far below it, a pendulum at q = 1e6; a
+   missing damping c against a Hessian of size 1 differs by c).
    sym_integrate checks no more after SYM_JAC_CHECKS checks that agreed. */
 #define SYM_JAC_AGREE 0.1
 #define SYM_JAC_CHECKS 3

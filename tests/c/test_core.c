@@ -76,6 +76,18 @@ near (double x, double ref)
   return fabs (x - ref) <= 1e-12 * fabs (ref);
 }
 
+/* the same for d = 2: f = (p1, p2, -q1^3, -q2^3) */
+static int
+quartic2 (double t, const double *y, double *dy, void *u)
+{
+  (void) t; (void) u;
+  dy[0] = y[2];
+  dy[1] = y[3];
+  dy[2] = -y[0] * y[0] * y[0];
+  dy[3] = -y[1] * y[1] * y[1];
+  return 0;
+}
+
 /* Newton test problem: x^3 - a = 0 componentwise, plus a coupling */
 typedef struct { double a[3]; int nres, nmat; } cube;
 static int
@@ -238,6 +250,26 @@ main (void)
     typ[0] = 0.0;
     CHECK (sym_jac (&sq4, 0, yq, NULL, dq) == 0 && near (dq[1], -sq * sq),
            "step 1 at y = 0: %.17g", dq[1]);
+    /* d = 2 (the quartic in each q): with ytyp, each component its own
+       size, at least 1e-6 times the largest of its half; without, the
+       largest of its half */
+    double y2[4] = { 1e10, 0.0, 0.0, 0.0 }, d2[16], typ2[4] = { 0, 3.0, 0, 0 };
+    sym_system s2;
+    memset (&s2, 0, sizeof s2);
+    s2.dim = 2;
+    s2.rhs = quartic2;
+    s2.ytyp = typ2;
+    CHECK (sym_jac (&s2, 0, y2, NULL, d2) == 0
+           && near (d2[1 * 4 + 3], -(sq * 1e4) * (sq * 1e4)),
+           "q2 stepped by sqrt(eps) 1e-6 |q1|: %.17g", d2[7]);
+    typ2[1] = 1e5;
+    CHECK (sym_jac (&s2, 0, y2, NULL, d2) == 0
+           && near (d2[1 * 4 + 3], -(sq * 1e5) * (sq * 1e5)),
+           "q2 stepped by its own size: %.17g", d2[7]);
+    s2.ytyp = NULL;
+    CHECK (sym_jac (&s2, 0, y2, NULL, d2) == 0
+           && near (d2[1 * 4 + 3], -(sq * 1e10) * (sq * 1e10)),
+           "without ytyp, by the size of q: %.17g", d2[7]);
   }
 
   /* with a batch callback: the same Jacobians, bit for bit, from one
