@@ -165,7 +165,7 @@ static void
 fd_sizes (const sym_system *sys, const double *y, double *size)
 {
   const int d = sys->dim;
-  double big[2], floor[2];
+  double big[2], low[2];
   for (int i = 0; i < 2 * d; i++)
     {
       size[i] = fabs (y[i]);
@@ -180,10 +180,10 @@ fd_sizes (const sym_system *sys, const double *y, double *size)
     }
   const double fl = sys->ytyp ? FD_FLOOR : 1.0;
   for (int half = 0; half < 2; half++)
-    floor[half] = big[half] > 0 ? fl * big[half]
-                  : big[1 - half] > 0 ? big[1 - half] : 1.0;
+    low[half] = big[half] > 0 ? fl * big[half]
+                : big[1 - half] > 0 ? big[1 - half] : 1.0;
   for (int i = 0; i < 2 * d; i++)
-    size[i] = fmax (size[i], floor[i >= d]);
+    size[i] = fmax (size[i], low[i >= d]);
 }
 
 /* Forward differences at k states (columns of y, times t, f0 their f):

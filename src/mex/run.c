@@ -95,8 +95,8 @@ take_double (mxArray **pa)
 
 /* Check a value returned by a user's function: real numeric with k
    elements (or logical, when logical_ok: the Events function's VALUE and
-   flags, as ode45 takes them);
-   convert it to double if needed.  Returns a double array. */
+   flags, as ode45 takes them); convert it to double if needed.  Returns a
+   double array. */
 static const double *
 checked_values (ctx_t *c, mxArray **pa, size_t k, const char *what,
                 int logical_ok, double t, const char *expect_fmt, ...)
@@ -345,6 +345,10 @@ hess_to_df (int d, const double *hs, double *df)
       }
 }
 
+/* what a Hessian must be, for messages (arguments n, n, n^2) */
+static const char *const HESS_EXPECT = "the Hessian of H, a %dx%d matrix or "
+                                       "a vector of %d elements";
+
 /* a is n-by-n, or a row or column (or not yet known to hold n^2 elements:
    checked_values says what it holds) */
 static int
@@ -362,12 +366,11 @@ take_hessian (ctx_t *c, mxArray **out, double t, double *df)
   int n = c->n;
   int fcn2 = c->jac_source == JAC_FCN2;
   const char *what = fcn2 ? "FCN (second output)" : "HamiltonianHessFcn";
-  static const char *expect = "the Hessian of H, a %dx%d matrix or a vector "
-                              "of %d elements";
   if (! hessian_shape (out[0], n))
-    checked_values (c, out, (size_t) -1, what, 0, t, expect, n, n, n * n);
+    checked_values (c, out, (size_t) -1, what, 0, t, HESS_EXPECT, n, n,
+                    n * n);
   const double *v = checked_values (c, out, (size_t) n * n, what, 0, t,
-                                    expect, n, n, n * n);
+                                    HESS_EXPECT, n, n, n * n);
   note_nonfinite (c, v, (size_t) n * n,
                   fcn2 ? "FCN's second output (the Hessian)"
                        : "HamiltonianHessFcn", t);
@@ -837,8 +840,7 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   if (have2)
     checked_values (c, &out[1], hessian_shape (out[1], n) ? (size_t) n * n
                                 : (size_t) -1, "FCN (second output)", 0,
-                    tspan[0], "the Hessian of H, a %dx%d matrix or a vector "
-                    "of %d elements", n, n, n * n);
+                    tspan[0], HESS_EXPECT, n, n, n * n);
 
   /* the Jacobian source, in SPEC's order */
   c->jac_source = JAC_NONE;
