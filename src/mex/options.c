@@ -25,13 +25,10 @@ name_eq (const char *a, const char *b)
   return *a == *b;
 }
 
-/* the solver whose options are being read, for field's message */
-static const char *field_solver = "";
-
 /* The non-empty field whose name matches (any case); two of them (a
    struct with Nodes and nodes both set) are an error: which to take? */
 static const mxArray *
-field (const mxArray *s, const char *name)
+field (const char *solver, const mxArray *s, const char *name)
 {
   if (! s)
     return NULL;
@@ -46,7 +43,7 @@ field (const mxArray *s, const char *name)
         if (found >= 0)
           mexErrMsgIdAndTxt (BADARG, "%s: OPTS sets both %s and %s (names "
                              "are matched in any case); give one of them",
-                             field_solver, mxGetFieldNameByNumber (s, found),
+                             solver, mxGetFieldNameByNumber (s, found),
                              mxGetFieldNameByNumber (s, i));
         found = i;
         v = vi;
@@ -239,7 +236,7 @@ symmex_is_function (const mxArray *a)
 static const mxArray *
 function_opt (const char *solver, const mxArray *opts, const char *name)
 {
-  const mxArray *v = field (opts, name);
+  const mxArray *v = field (solver, opts, name);
   char buf[64];
   if (v && ! symmex_is_function (v))
     mexErrMsgIdAndTxt (BADARG, "%s: %s must be a function handle or the "
@@ -255,7 +252,6 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
   const mxArray *v;
   char buf[64];
   memset (o, 0, sizeof (*o));
-  field_solver = solver;
   if (opts && ! mxIsEmpty (opts)
       && ! (mxIsStruct (opts) && mxGetNumberOfElements (opts) == 1))
     mexErrMsgIdAndTxt (BADARG, "%s: OPTS must be a struct from odeset or "
@@ -264,12 +260,12 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
   if (opts && mxIsEmpty (opts))
     opts = NULL;
 
-  o->rtol = (v = field (opts, "RelTol")) ? pos_scalar (solver, v, "RelTol", 0)
-            : 1e-3;
+  o->rtol = (v = field (solver, opts, "RelTol"))
+            ? pos_scalar (solver, v, "RelTol", 0) : 1e-3;
   o->atol = mxMalloc (sizeof (double) * n);
   o->atol_len = 1;
   o->atol[0] = 1e-6;
-  if ((v = field (opts, "AbsTol")))
+  if ((v = field (solver, opts, "AbsTol")))
     {
       size_t k = mxGetNumberOfElements (v);
       if (! is_real_numeric (v) || (k != 1 && k != (size_t) n)
@@ -287,18 +283,18 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
         }
       o->atol_len = (int) k;
     }
-  o->norm_control = (v = field (opts, "NormControl"))
+  o->norm_control = (v = field (solver, opts, "NormControl"))
                     ? on_off (solver, v, "NormControl") : 0;
   if (o->norm_control && o->atol_len > 1)
     mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a scalar when "
                        "NormControl is \"on\"", solver);
-  o->h0 = (v = field (opts, "InitialStep"))
+  o->h0 = (v = field (solver, opts, "InitialStep"))
           ? pos_scalar (solver, v, "InitialStep", 0) : 0;
-  o->hmax = (v = field (opts, "MaxStep"))
+  o->hmax = (v = field (solver, opts, "MaxStep"))
             ? pos_scalar (solver, v, "MaxStep", 1) : 0;
   o->events = function_opt (solver, opts, "Events");
   o->outputfcn = function_opt (solver, opts, "OutputFcn");
-  if ((v = field (opts, "OutputSel")))
+  if ((v = field (solver, opts, "OutputSel")))
     {
       size_t k = mxGetNumberOfElements (v);
       if ((! is_real_numeric (v) && ! mxIsLogical (v))
@@ -328,12 +324,13 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
             o->outputsel[o->noutputsel++] = (int) x - 1;
           }
     }
-  o->refine = (v = field (opts, "Refine"))
+  o->refine = (v = field (solver, opts, "Refine"))
               ? (int) pos_integer (solver, v, "Refine", 1, 1000000) : 1;
-  o->stats = (v = field (opts, "Stats")) ? on_off (solver, v, "Stats") : 0;
-  o->vectorized = (v = field (opts, "Vectorized"))
+  o->stats = (v = field (solver, opts, "Stats"))
+             ? on_off (solver, v, "Stats") : 0;
+  o->vectorized = (v = field (solver, opts, "Vectorized"))
                   ? on_off (solver, v, "Vectorized") : 0;
-  if ((v = field (opts, "Jacobian")))
+  if ((v = field (solver, opts, "Jacobian")))
     {
       if (symmex_is_function (v))
         o->jacobian = v;
@@ -360,23 +357,23 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                            solver, n, n, symmex_describe (v, buf, sizeof buf));
     }
   o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");
-  o->h_fixed = (v = field (opts, "TimeStepSize"))
+  o->h_fixed = (v = field (solver, opts, "TimeStepSize"))
                ? pos_scalar (solver, v, "TimeStepSize", 0) : 0;
-  o->nsteps_fixed = (v = field (opts, "TimeStepNumber"))
+  o->nsteps_fixed = (v = field (solver, opts, "TimeStepNumber"))
                     ? pos_integer (solver, v, "TimeStepNumber", 1,
                                    MAX_COUNT) : 0;
-  o->separable = (v = field (opts, "Separable"))
+  o->separable = (v = field (solver, opts, "Separable"))
                  ? on_off (solver, v, "Separable") : 0;
-  o->newton_tol = (v = field (opts, "NewtonTol"))
+  o->newton_tol = (v = field (solver, opts, "NewtonTol"))
                   ? pos_scalar (solver, v, "NewtonTol", 0) : 0;
   if (! (o->newton_tol < 1))
     mexErrMsgIdAndTxt (BADARG, "%s: NewtonTol must be below 1 (it is "
                        "relative to the size of y), got %s", solver,
                        SYMMEX_NUM (o->newton_tol, "%g"));
-  o->max_newton = (v = field (opts, "MaxNewtonIterations"))
+  o->max_newton = (v = field (solver, opts, "MaxNewtonIterations"))
                   ? (int) pos_integer (solver, v, "MaxNewtonIterations", 1,
                                        1000) : 0;
-  o->max_steps = (v = field (opts, "MaxSteps"))
+  o->max_steps = (v = field (solver, opts, "MaxSteps"))
                  ? pos_integer (solver, v, "MaxSteps", 1, MAX_COUNT) : 0;
 
   /* odeset fields that would change the problem solved: not taken (a
@@ -386,7 +383,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
      ...) are ignored. */
   static const char *unsupported[] = { "NonNegative", "Mass" };
   for (size_t i = 0; i < sizeof unsupported / sizeof *unsupported; i++)
-    if (field (opts, unsupported[i]))
+    if (field (solver, opts, unsupported[i]))
       mexWarnMsgIdAndTxt ("symplectic:unsupported-option", "%s: option %s "
                           "is not supported and is ignored", solver,
                           unsupported[i]);
@@ -397,10 +394,10 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
   o->q_dofs = 0;
   if (is_spvi)
     {
-      const mxArray *vn = field (opts, "Nodes");
-      const mxArray *vp = field (opts, "P_DoFs");
-      const mxArray *vq = field (opts, "Q_DoFs");
-      const mxArray *vd = field (opts, "PolynomialDegree");
+      const mxArray *vn = field (solver, opts, "Nodes");
+      const mxArray *vp = field (solver, opts, "P_DoFs");
+      const mxArray *vq = field (solver, opts, "Q_DoFs");
+      const mxArray *vd = field (solver, opts, "PolynomialDegree");
       /* two names of one number that disagree are refused rather than
          one of them winning */
       int pn = vn ? (int) pos_integer (solver, vn, "Nodes", 1, 40) : 0;
@@ -427,7 +424,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                            o->nodes);
       /* Newton's matrix: kept across steps, or new on every step */
       o->newton_matrix = SYM_MATRIX_AUTO;
-      const mxArray *vm = field (opts, "NewtonMatrix");
+      const mxArray *vm = field (solver, opts, "NewtonMatrix");
       if (vm)
         {
           char buf[8] = "";
