@@ -85,11 +85,18 @@ check-memory: mex
 bench: all
 	$(OCTAVE) --norc --no-gui --path "$(CURDIR)/inst" bench/run_benchmarks.m
 
-# Stage a clean copy (no build products) and pack it as DISTNAME/.
+# Stage a clean copy (no build products) and pack it as DISTNAME/.  In a
+# git checkout only the files git tracks are packed (as they are in the
+# working tree), so no scratch or editor file of the tree gets in.
 dist:
 	rm -rf build/dist $(TARBALL)
 	mkdir -p build/dist/$(DISTNAME)
-	cp -R $(DIST_FILES) build/dist/$(DISTNAME)/
+	if git rev-parse --is-inside-work-tree > /dev/null 2>&1; then \
+	  git ls-files -z -- $(DIST_FILES) \
+	    | xargs -0 cp --parents -t build/dist/$(DISTNAME)/; \
+	else \
+	  cp -R $(DIST_FILES) build/dist/$(DISTNAME)/; \
+	fi
 	cd build/dist/$(DISTNAME) && \
 	  rm -rf tests/c/build && \
 	  find . \( -name '*.o' -o -name '*.mex' -o -name '*.oct' -o -name '*.c-tst' \
@@ -118,7 +125,8 @@ check-installed: dist
 clean:
 	$(MAKE) -C src clean
 	$(MAKE) -C tests/c clean
-	rm -rf build $(PACKAGE)-*.tar.gz fntests.log octave-workspace
+	rm -rf build $(PACKAGE)-*.tar.gz fntests.log octave-workspace \
+	       demo-energy.png bench/callback_cost.mex
 
 .PHONY: all deps mex demo check check-c check-octave valgrind check-memory \
         bench dist install check-installed clean
