@@ -48,9 +48,8 @@
 ## elements, rows exactly at those times, taken from the dense output
 ## without shortening any step.  tf < t0 integrates backwards.  @var{y0} =
 ## [q0; p0] is a real vector of even length (row or column).  @var{opts}
-## is a struct, or any empty value ([], @{@}, '') for the defaults.  Extra
-## arguments @var{par1},
-## @dots{} come after it and are passed to @var{fcn} (and to the
+## is a struct, or any empty value (@code{[]}, @code{@{@}}, an empty
+## string) for the defaults.  Extra arguments @var{par1}, @dots{} come after it and are passed to @var{fcn} (and to the
 ## Jacobian, Hessian, Events and OutputFcn functions) after t and y;
 ## unlike Octave's @code{ode45}, a fourth argument that is neither a struct
 ## nor empty is refused rather than taken as @var{par1} (pass [] before

@@ -95,15 +95,15 @@
 ## lower-order one, which only enters the estimate, stops when its error
 ## is below 1e-3 of the smallest error the tolerances allow
 ## (min_i max(AbsTol, RelTol*|y_i|)), the companion's below 1e-4 of it,
-## neither below NewtonTol/100.  On Kepler (e = 0.6, 10 periods, RelTol =
-## AbsTol = 1e-4 to 1e-12) that takes 10-29% fewer calls than the lower
-## order to round-off and the companion to NewtonTol, with the same
-## end-point errors down to 1e-10, and 1.4e-12 instead of 1.2e-9 at 1e-12
-## (@file{tests/c/test_spvi.c}; 6.4e-12 from Octave, tests/test_spvi.m).  The step size follows the trend of the
-## error over the last two accepted steps as well as its size (predictive
-## control, see @code{help odeSE}): on the same runs at most 16% of the
-## attempted steps fail (24 of 157 at RelTol 1e-4, 15 of 419 at 1e-8),
-## against 26-28% without it at RelTol 1e-4 to 1e-8.  With that, and
+## neither below NewtonTol/100: fewer calls than solves to round-off, and
+## the end-point error still follows the tolerance: on Kepler (e = 0.6,
+## 10 periods, RelTol = AbsTol = 1e-4 to 1e-12) it shrinks at least 30
+## times per factor 100, to 1.4e-12 at 1e-12 (@file{tests/c/test_spvi.c};
+## 6.4e-12 from Octave, @file{tests/test_spvi.m}).  The step size follows
+## the trend of the error over the last two accepted steps as well as its
+## size (predictive control, see @code{help odeSE}): on the same runs at
+## most 16% of the attempted steps fail (24 of 157 at RelTol 1e-4, 15 of
+## 419 at 1e-8), against 26-28% without it at RelTol 1e-4 to 1e-8.  With that, and
 ## the companion's Newton matrices interpolated from the method's node
 ## Jacobians of the same step (no call of @var{fcn}), the runs make
 ## 3635 4750 8005 13330 24879 evaluations of f and of its Jacobian (each
@@ -212,8 +212,9 @@
 ## of them (tests/test_spvi.m); narrower excursions can still be missed,
 ## which @code{MaxStep} prevents.  On every step this costs Nodes calls
 ## of the Events function and the call of @var{fcn} at the step's end
-## (above): on Kepler with a fixed step 2*pi/100, 10.4 instead of 9.4
-## calls of @var{fcn} per step.
+## (above): on Kepler with a fixed step 2*pi/100 and an @var{fcn} without
+## the Hessian (finite-difference matrices), 10.4 instead of 9.4 calls of
+## @var{fcn} per step.
 ## @end table
 ##
 ## A run that cannot go on (Newton fails with the fixed step or at the

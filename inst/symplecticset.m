@@ -30,13 +30,14 @@
 ## steps over @var{tspan}.
 ## @item Q_DoFs
 ## @code{odeSPVI}: number of Legendre modes of q on each step (polynomial
-## degree Q_DoFs-1), at least 2 and at most 2*Nodes.  Default Nodes+1.
+## degree Q_DoFs-1), at least 2 and at most 2*Nodes and 41.  Default
+## Nodes+1.
 ## @item Nodes
 ## @code{odeSPVI}: number of Gauss--Legendre quadrature nodes (1 to 40).
 ## Default 3.  @code{P_DoFs} is accepted as an alias.
 ## @item PolynomialDegree
 ## @code{odeSPVI}: sets Q_DoFs = degree+1, and Nodes = degree+1 unless
-## Nodes is given.  Given together with Q_DoFs (or P_DoFs with Nodes) it
+## Nodes is given (degree 1 to 40; degree 40 alone gives 41 nodes).  Given together with Q_DoFs (or P_DoFs with Nodes) it
 ## must agree with it: @code{odeSPVI} refuses a disagreement.
 ## @item HamiltonianHessFcn
 ## Handle @code{hess (t, y, @dots{})} returning the Hessian of H with
@@ -100,9 +101,9 @@ function opts = symplecticset (varargin)
     printf ("\nOptions of the symplectic package:\n");
     printf ("       TimeStepSize:  scalar, >0, [] (adaptive)\n");
     printf ("     TimeStepNumber:  integer, >0, []\n");
-    printf ("             Q_DoFs:  integer, 2..2*Nodes, [Nodes+1]\n");
+    printf ("             Q_DoFs:  integer, 2..min(2*Nodes,41), [Nodes+1]\n");
     printf ("              Nodes:  integer, 1..40, [3] (alias P_DoFs)\n");
-    printf ("   PolynomialDegree:  integer, >0, []\n");
+    printf ("   PolynomialDegree:  integer, 1..40, []\n");
     printf (" HamiltonianHessFcn:  function handle, []\n");
     printf ("          Separable:  {[\"off\"], \"on\"}\n");
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");

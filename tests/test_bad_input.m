@@ -1,4 +1,4 @@
-## Every bad input gets a clear error (SPEC.md section 2): its message
+## Every bad input gets a clear error: its message
 ## begins with the solver's name (once), says what is wrong and what is
 ## expected, and it has an identifier: "Octave:invalid-input-arg" for bad
 ## arguments and options, "Octave:invalid-fun-call" for a wrong number of
@@ -400,6 +400,7 @@
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 3 with Nodes = 1 is a degenerate pair", f, [0 1], y0, struct ("Q_DoFs", 3, "Nodes", 1));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 5 with Nodes = 2 is a degenerate pair", f, [0 1], y0, struct ("Q_DoFs", 5, "P_DoFs", 2));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be between 1 and 40, got 0", f, [0 1], y0, struct ("PolynomialDegree", 0));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be between 1 and 40, got 41", f, [0 1], y0, struct ("PolynomialDegree", 41));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be an integer, got 2.5", f, [0 1], y0, struct ("PolynomialDegree", 2.5));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 5 with Nodes = 2 is a degenerate pair", f, [0 1], y0, struct ("PolynomialDegree", 4, "Nodes", 2));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Nodes = 5 and its alias P_DoFs = 2 disagree; give one of them", f, [0 1], y0, symplecticset ("Nodes", 5, "P_DoFs", 2));

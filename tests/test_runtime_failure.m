@@ -1,7 +1,7 @@
 ## When the integration cannot go on (FCN keeps returning NaN, Newton
 ## diverges at the smallest or at the fixed step, the step size underflows,
 ## MaxSteps is reached), the solvers warn with an identifier, as ode45
-## does, and RETURN every row computed up to there (SPEC.md section 2).
+## does, and RETURN every row computed up to there (as the solvers' help says).
 
 ## run_warn (SOLVER, ARGS...): [t, y, msg, id] of [t, y] = SOLVER (ARGS{:}),
 ## with the warning it gave (its printout captured, to keep the log clean).
