@@ -48,7 +48,7 @@
 ## @qcode{"off"}.
 ## @item NewtonTol
 ## Stopping tolerance of Newton's method, relative to the size of y.
-## Default 1e-14.
+## Default 1e-14.  Fixed steps are converged to NewtonTol/100.
 ## @item MaxNewtonIterations
 ## Newton iterations per solve before the matrix is refreshed or the step
 ## is retried.  Default 10.

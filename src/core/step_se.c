@@ -16,8 +16,9 @@
    - Start: P0 = p_k + h f_p(t_k, y_k) when f(t_k, y_k) is known (FSAL),
      else p_k + (p_k - p_{k-1}) h / h_prev when the last accepted step ended
      at (t_k, y_k), else f(t_k, y_k) is evaluated (one call).
-   - Stop: max_i |dP_i| / s <= tol (opts->newton_tol, default 1e-14), with
-     s = max(|p_k|_inf, |P0 - p_k|_inf) (1 if both vanish).
+   - Stop: max_i |dP_i| / s <= tol (opts->newton_tol, default
+     1e-14; for a fixed step SYM_FIXED_TOL = 1e-2 times that, steprec.h),
+     with s = max(|p_k|_inf, |P0 - p_k|_inf) (1 if both vanish).
    - q_{k+1} needs f_q at the final P, but the last residual was evaluated
      at the previous iterate: f is evaluated at P once more (unless the last
      correction was round-off, |dP| <= 4 eps s).  That gives G(P) for free,

@@ -22,7 +22,9 @@
      (FSAL), else p_k + (p_k - p_{k-1/2}) h / h_prev when the last accepted
      step ended at (t_k, y_k), else f(t_k, y_k) is evaluated (one call);
      Q0 = q_k + h f_q(t_k, q_k, P).
-   - Stop: max_i |dx_i| / s <= tol (opts->newton_tol, default 1e-14), with
+   - Stop: max_i |dx_i| / s <= tol (opts->newton_tol, default
+     1e-14; for a fixed step SYM_FIXED_TOL = 1e-2 times that, steprec.h),
+     with
      s the max norm of p_k (q_k) or of the predicted increment P0 - p_k
      (Q0 - q_k), whichever is larger (1 if both vanish).
    - The f values used after each solve are those at the converged unknown:
