@@ -72,11 +72,11 @@
 ## Without them the step is adaptive.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
 ## Adaptive mode, scaled as in @code{ode45} (defaults 1e-3, 1e-6, off,
-## automatic, |tf-t0|/10).  The local error estimate is the difference to
-## the trapezoidal rule built from @var{fcn} at both ends of the step,
-## y(k+1) - y(k) - h/2 (f(k) + f(k+1)), of size O(h^2) like the method's
-## local error; it costs one evaluation of @var{fcn} per step (shared with
-## the next step).  After an accepted step the next step is the smaller
+## automatic, |tf-t0|/10; MaxStep = Inf: no cap).  The local error
+## estimate is the difference to the trapezoidal rule built from @var{fcn}
+## at both ends of the step, y(k+1) - y(k) - h/2 (f(k) + f(k+1)), of size
+## O(h^2) like the method's local error; it costs one evaluation of
+## @var{fcn} per step (shared with the next step).  After an accepted step the next step is the smaller
 ## of the classical choice, 0.9 (1/err)^(1/(p+1)) times the last, and the
 ## one that follows the change of the error over the last two accepted
 ## steps (predictive control), so that where the error grows along the
@@ -133,10 +133,12 @@
 ## As in @code{ode45}; also, scalar ISTERMINAL and DIRECTION hold for every
 ## element of VALUE, @code{OutputSel} may be a logical mask, and the
 ## options that take @qcode{"on"} or @qcode{"off"} take true or false too.
-## A value that @code{OutputFcn} returns stops the
-## run when @code{if} would take it as true (all its elements nonzero; a
-## char too); NaN, and values other than logical, char or real numeric,
-## are errors.  Event times, output times and refined rows come
+## @code{OutputFcn} is called with the flag @qcode{"init"}, then
+## @qcode{""} with each row (an empty char; @code{ode45} passes [] there:
+## test it with @code{isempty}), then @qcode{"done"}.  A value that
+## @code{OutputFcn} returns stops the run when @code{if} would take it as
+## true (all its elements nonzero; a char too); NaN, and values other
+## than logical, char or real numeric, are errors.  Event times, output times and refined rows come
 ## from the dense output (cubic Hermite interpolation between steps, from
 ## @var{fcn} at the step points).  An event counts where its function
 ## changes sign or becomes zero (in the chosen direction) after t0,
@@ -176,9 +178,11 @@
 ## returns every row computed so far.  The warnings' identifiers are
 ## @code{symplectic:newton-failed}, @code{symplectic:nonfinite},
 ## @code{symplectic:step-size}, @code{symplectic:max-steps},
-## and @code{symplectic:output-stop} (and @code{symplectic:tolerance} for
-## a RelTol raised to 100*eps, @code{symplectic:tspan-beyond-end} for
-## output times after the end of TimeStepNumber steps); an error in a
+## and @code{symplectic:output-stop} (OutputFcn asked to stop before tf;
+## no event after the row where it stopped is returned), and
+## @code{symplectic:tolerance} for a RelTol raised to 100*eps,
+## @code{symplectic:tspan-beyond-end} for output times after the end of
+## TimeStepNumber steps; an error in a
 ## function of the user's ends the run with that error; bad
 ## arguments raise errors with the identifier
 ## @code{Octave:invalid-input-arg} whose message begins with the solver's

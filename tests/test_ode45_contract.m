@@ -309,6 +309,39 @@
 %! CONTRACT_TSTOP = [];
 
 %!test
+%! ## a stop inside a step (at an output time or a refined row) returns no
+%! ## event after t(end), as ode45; a stop on the last row (tf) does not warn
+%! f = @(t, y) [y(2); -y(1)];                 # q = cos t: zero at pi/2
+%! ev = @(t, y) deal (y(1), 0, 0);
+%! for i = 1:3
+%!   o = odeset ("Events", ev, "OutputFcn", @(t, y, fl) isempty (fl) && t(end) >= 1.2);
+%!   warning ("off", "symplectic:output-stop", "local");
+%!   [t, y, te, ye, ie] = solvers{i} (f, 0:0.1:10, [1; 0], o);
+%!   assert (t(end), 1.2, 1e-12);
+%!   assert (size (te, 1), 0);
+%!   assert (size (ye, 1), 0);
+%!   assert (size (ie, 1), 0);
+%!   o = symplecticset ("TimeStepSize", 2, "Refine", 10, "Events", ev, ...
+%!                      "OutputFcn", @(t, y, fl) isempty (fl) && t(end) >= 0.4);
+%!   sol = solvers{i} (f, [0 4], [1; 0], o);
+%!   [t, y, te] = solvers{i} (f, [0 4], [1; 0], o);
+%!   assert (t(end), 0.4, 1e-12);
+%!   assert (size (te, 1), 0);
+%!   ## the stop after the event's row keeps the event
+%!   o = symplecticset (o, "OutputFcn", @(t, y, fl) isempty (fl) && t(end) >= 1.8);
+%!   [t, y, te] = solvers{i} (f, [0 4], [1; 0], o);
+%!   assert (t(end), 1.8, 1e-12);
+%!   assert (numel (te), 1);         # h = 2: odeSE's zero is at 0.79
+%!   assert (te > 0 && te < 1.8);
+%!   warning ("on", "symplectic:output-stop", "local");
+%!   lastwarn ("");
+%!   o = odeset ("OutputFcn", @(t, y, fl) isempty (fl) && t(end) >= 1);
+%!   [t, y] = solvers{i} (f, [0 1], [1; 0], o);
+%!   assert (t(end), 1);
+%!   assert (lastwarn (), "");
+%! endfor
+
+%!test
 %! ## the stop flag as "if" takes it: all elements nonzero stops (a char
 %! ## too), a zero or empty value goes on; NaN and other classes are errors
 %! f = @(t, y) [y(2); -y(1)];
@@ -693,6 +726,19 @@
 %!   [t, y] = solvers{i} (f, -ts(:), [1; 0], symplecticset ("TimeStepSize", 0.1));
 %!   assert (t, -ts(:));
 %!   assert (y(:, 1), cos (t), 0.06);
+%! endfor
+
+%!test
+%! ## MaxStep: the default cap is |tf-t0|/10; Inf lifts it, as in ode45 (a
+%! ## slow oscillator, whose steps at the default tolerances are longer)
+%! f = @(t, y) [y(2); -1e-4 * y(1)];
+%! for i = 2:3      # odeSE's steps (at most 4) stay below the cap anyway
+%!   [t1, ~] = solvers{i} (f, [0 100], [1; 0]);
+%!   [t2, ~] = solvers{i} (f, [0 100], [1; 0], odeset ("MaxStep", Inf));
+%!   [t3, ~] = solvers{i} (f, [0 100], [1; 0], odeset ("MaxStep", 5));
+%!   assert (max (diff (t1)), 10, 1e-12);
+%!   assert (max (diff (t2)) > 15);
+%!   assert (max (diff (t3)), 5, 1e-12);
 %! endfor
 
 %!test

@@ -504,7 +504,8 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
         }
     }
 
-  const int user_hmax = o->hmax > 0 && isfinite (o->hmax);
+  /* as in ode45: MaxStep = Inf lifts the default cap */
+  const int user_hmax = o->hmax > 0;
   double hmax = user_hmax ? o->hmax : 0.1 * fabs (o->tf - o->t0);
   double h = 0;
   int q = type->err_order ? type->err_order (r.state) : type->order;

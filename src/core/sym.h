@@ -322,7 +322,7 @@ typedef struct {
   int atol_len;
   int norm_control;
   double h0;           /* 0: automatic */
-  double hmax;         /* 0 or inf: |tf - t0| / 10, as ode45 */
+  double hmax;         /* 0: |tf - t0| / 10; inf: no cap (as ode45) */
   long max_steps;      /* 0: no limit */
   /* events */
   int nevents;

@@ -996,9 +996,18 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
     case SYM_STOP_EVENT:
       break;
     case SYM_STOP_OUTPUT:
-      mexWarnMsgIdAndTxt ("symplectic:output-stop", "%s: OutputFcn asked to "
-                          "stop at t = %.17g; returning the solution up to "
-                          "there", name, tlast);
+      {
+        /* the events of a step are found before its rows go out: those
+           after the row where OutputFcn stopped are dropped, so that, as
+           in ode45, no returned event lies beyond t(end) */
+        while (c->nev > 0 && dir * (c->te[c->nev - 1] - tlast) > 0)
+          c->nev--;
+        /* a stop on the last row ends nothing early: no warning */
+        if (tlast != tspan[ntspan - 1])
+          mexWarnMsgIdAndTxt ("symplectic:output-stop", "%s: OutputFcn "
+                              "asked to stop at t = %.17g; returning the "
+                              "solution up to there", name, tlast);
+      }
       break;
     case SYM_ENEWTON:
       {

@@ -675,6 +675,25 @@ main (void)
     for (int i = 1; i < S.nrows; i++)
       ok &= S.t[i] - S.t[i - 1] <= 0.05 * (1 + 1e-12);
     CHECK (ok && st == SYM_DONE, "hmax respected");
+    /* hmax 0: |tf - t0| / 10; inf: no cap (as 1e300), as in ode45 */
+    double hbig[3], hcap[3] = { 0.0, INFINITY, 1e300 };
+    for (int k = 0; k < 3; k++)
+      {
+        setup (&sys, &hu, &o, &atol);
+        o.hmax = hcap[k];
+        double at = 0.5;
+        o.rtol = 0.5;
+        o.atol = &at;
+        o.tf = 2;
+        st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
+        hbig[k] = 0.0;
+        for (int i = 1; i < S.nrows; i++)
+          hbig[k] = fmax (hbig[k], S.t[i] - S.t[i - 1]);
+        CHECK (st == SYM_DONE, "hmax %g: %s", hcap[k], sym_status_name (st));
+      }
+    CHECK (hbig[0] <= 0.2 * (1 + 1e-12) && hbig[1] > 0.5
+           && hbig[2] == hbig[1], "largest steps %.17g %.17g %.17g",
+           hbig[0], hbig[1], hbig[2]);
     /* a too large initial step is rejected and retried */
     setup (&sys, &hu, &o, &atol);
     o.h0 = 5;
