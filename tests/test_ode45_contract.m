@@ -729,6 +729,18 @@
 %! endfor
 
 %!test
+%! ## Refine with a terminal event on a refined time (to round-off): one
+%! ## row there, the event's (the refined row 1 ulp before it was kept too)
+%! f = @(t, y) [y(2); -y(1)];
+%! o = symplecticset ("TimeStepSize", 0.3, "Refine", 3, ...
+%!                    "Events", @(t, y) deal (t - 1, 1, 0));
+%! for i = 1:3
+%!   [t, y, te] = solvers{i} (f, [0 2], [1; 0], o);
+%!   assert (t(end), te, 4 * eps);
+%!   assert (t(end-1), 0.9, 4 * eps);
+%! endfor
+
+%!test
 %! ## MaxStep: the default cap is |tf-t0|/10; Inf lifts it, as in ode45 (a
 %! ## slow oscillator, whose steps at the default tolerances are longer)
 %! f = @(t, y) [y(2); -1e-4 * y(1)];

@@ -329,7 +329,11 @@ output_step (run_t *r, double t, double h, double tnew, const double *ynew,
       for (int j = 1; j < o->refine; j++)
         {
           double ti = t + h * j / o->refine;
-          if (r->dir * (ti - tlim) >= 0)
+          /* a refined row within round-off of a terminal event's row
+             (4 ulps) would repeat it */
+          if (r->dir * (ti - tlim)
+              >= (stopped ? -4 * DBL_EPSILON * fmax (fabs (ti), fabs (tlim))
+                          : 0))
             break;
           st = r->type->dense (r->state, r->sys, ti, r->ydense);
           if (st)
