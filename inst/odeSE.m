@@ -49,7 +49,8 @@
 ## without shortening any step.  tf < t0 integrates backwards.  @var{y0} =
 ## [q0; p0] is a real vector of even length (row or column).  @var{opts}
 ## is a struct, or any empty value (@code{[]}, @code{@{@}}, an empty
-## string) for the defaults.  Extra arguments @var{par1}, @dots{} come after it and are passed to @var{fcn} (and to the
+## string) for the defaults.  Extra arguments @var{par1}, @dots{} come
+## after it and are passed to @var{fcn} (and to the
 ## Jacobian, Hessian, Events and OutputFcn functions) after t and y;
 ## unlike Octave's @code{ode45}, a fourth argument that is neither a struct
 ## nor empty is refused rather than taken as @var{par1} (pass [] before
@@ -76,7 +77,8 @@
 ## estimate is the difference to the trapezoidal rule built from @var{fcn}
 ## at both ends of the step, y(k+1) - y(k) - h/2 (f(k) + f(k+1)), of size
 ## O(h^2) like the method's local error; it costs one evaluation of
-## @var{fcn} per step (shared with the next step).  After an accepted step the next step is the smaller
+## @var{fcn} per step (shared with the next step).  After an accepted
+## step the next step is the smaller
 ## of the classical choice, 0.9 (1/err)^(1/(p+1)) times the last, and the
 ## one that follows the change of the error over the last two accepted
 ## steps (predictive control), so that where the error grows along the
@@ -126,8 +128,8 @@
 ## NewtonTol/100: the Newton matrix is kept across steps, so the error a
 ## stop leaves has the same sign from step to step and adds up; at
 ## NewtonTol itself the angular momentum of a non-separable
-## rotation-invariant H drifted by 4e-12 (2.4e-11 with @code{odeSV}) over
-## 20000 steps, at NewtonTol/100 by 6e-14, as round-off does
+## rotation-invariant H drifted by 1.9e-12 (1.1e-11 with @code{odeSV})
+## over 10000 steps, at NewtonTol/100 by 3e-14, as round-off does
 ## (@file{tests/test_se_sv.m}).  In adaptive runs, NewtonTol.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}; also, scalar ISTERMINAL and DIRECTION hold for every
@@ -138,7 +140,8 @@
 ## test it with @code{isempty}), then @qcode{"done"}.  A value that
 ## @code{OutputFcn} returns stops the run when @code{if} would take it as
 ## true (all its elements nonzero; a char too); NaN, and values other
-## than logical, char or real numeric, are errors.  Event times, output times and refined rows come
+## than logical, char or real numeric, are errors.  Event times, output
+## times and refined rows come
 ## from the dense output (cubic Hermite interpolation between steps, from
 ## @var{fcn} at the step points).  An event counts where its function
 ## changes sign or becomes zero (in the chosen direction) after t0,

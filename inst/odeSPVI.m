@@ -103,7 +103,8 @@
 ## the trend of the error over the last two accepted steps as well as its
 ## size (predictive control, see @code{help odeSE}): on the same runs at
 ## most 16% of the attempted steps fail (24 of 157 at RelTol 1e-4, 15 of
-## 419 at 1e-8), against 26-28% without it at RelTol 1e-4 to 1e-8.  With that, and
+## 419 at 1e-8), against 26-28% without it at RelTol 1e-4 to 1e-8.  With
+## that, and
 ## the companion's Newton matrices interpolated from the method's node
 ## Jacobians of the same step (no call of @var{fcn}), the runs make
 ## 3635 4750 8005 13330 24879 evaluations of f and of its Jacobian (each
@@ -217,7 +218,8 @@
 ## of them.  Over 40 phases, q = sin (t + phi), all 255 crossings of 0.99
 ## are found at 1e-3 and 1e-4, and of 0.999 at 1e-4, but only 217 at 1e-3
 ## (13 phases miss some; tests/test_spvi.m): narrower excursions, against
-## longer steps, can be missed, which @code{MaxStep} prevents.  On every step this costs Nodes calls
+## longer steps, can be missed, which @code{MaxStep} prevents.  On every
+## step this costs Nodes calls
 ## of the Events function and the call of @var{fcn} at the step's end
 ## (above): on Kepler with a fixed step 2*pi/100 and an @var{fcn} without
 ## the Hessian (finite-difference matrices), 10.4 instead of 9.4 calls of

@@ -37,7 +37,8 @@
 ## Default 3.  @code{P_DoFs} is accepted as an alias.
 ## @item PolynomialDegree
 ## @code{odeSPVI}: sets Q_DoFs = degree+1, and Nodes = degree+1 unless
-## Nodes is given (degree 1 to 40; degree 40 alone gives 41 nodes).  Given together with Q_DoFs (or P_DoFs with Nodes) it
+## Nodes is given (degree 1 to 40; degree 40 alone gives 41 nodes).
+## Given together with Q_DoFs (or P_DoFs with Nodes) it
 ## must agree with it: @code{odeSPVI} refuses a disagreement.
 ## @item HamiltonianHessFcn
 ## Handle @code{hess (t, y, @dots{})} returning the Hessian of H with

@@ -24,9 +24,8 @@
      Q0 = q_k + h f_q(t_k, q_k, P).
    - Stop: max_i |dx_i| / s <= tol (opts->newton_tol, default
      1e-14; for a fixed step SYM_FIXED_TOL = 1e-2 times that, steprec.h),
-     with
-     s the max norm of p_k (q_k) or of the predicted increment P0 - p_k
-     (Q0 - q_k), whichever is larger (1 if both vanish).
+     with s the max norm of p_k (q_k) or of the predicted increment
+     P0 - p_k (Q0 - q_k), whichever is larger (1 if both vanish).
    - The f values used after each solve are those at the converged unknown:
      the last residual was evaluated at the previous iterate, so f is
      evaluated at the solution once more (unless the last correction was

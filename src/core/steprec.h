@@ -19,12 +19,13 @@
    With the matrix kept, the error a stop leaves has the same sign from
    step to step, so it adds up: on H = |p|^2/2 (1 + |q|^2/4) - 1/|q| in
    3-D (rotation-invariant, non-separable; h = 2 pi/200, finite-difference
-   matrices, tests/test_se_sv.m) the angular momentum drifted linearly by
-   4.2e-12 (odeSE) and 2.4e-11 (odeSV) over 20000 steps at the tolerance
-   itself, 5.4e-13 and 1.4e-12 at 1e-1 of it; at 1e-2, 6e-14 (round-off:
-   sqrt(20000) eps |L| is 2.6e-14) for 8% more calls (6.28 -> 6.79 and
-   10.67 -> 11.57 per step); with the Hessian as FCN's second output on
-   H = p^2/2 (1 + q^2) + q^4/4, 9% and 3% more. */
+   matrices) the angular momentum drifted linearly by 4.2e-12 (odeSE) and
+   2.4e-11 (odeSV) over 20000 steps at the tolerance itself, 5.4e-13 and
+   1.4e-12 at 1e-1 of it; at 1e-2, 6e-14 (round-off: sqrt(20000) eps |L|
+   is 2.6e-14; tests/test_se_sv.m holds 10000 steps within 2e-13) for 8%
+   more calls (6.28 -> 6.79 and 10.67 -> 11.57 per step); with the
+   Hessian as FCN's second output on H = p^2/2 (1 + q^2) + q^4/4, 9% and
+   3% more. */
 #define SYM_FIXED_TOL 1e-2
 
 /* One step: its start, end, the f values known at its two ends, and the

@@ -1,5 +1,6 @@
 /* options.c -- odeset options and the package's own fields, matched by
-   name without regard to case, checked, with the defaults the help of symplecticset lists. */
+   name without regard to case, checked, with the defaults that the help
+   of symplecticset lists. */
 #include "symmex.h"
 
 #include <ctype.h>
