@@ -136,7 +136,7 @@
 ## matrix (no Jacobian or Hessian source) takes one call for all nodes
 ## and their 2d perturbed states each; such a matrix is then new on every
 ## step (NewtonMatrix @qcode{"auto"}), so that a step often needs one call
-## in all: 1.60 calls per step on Kepler with the default pair and
+## in all: 1.57 calls per step on Kepler with the default pair and
 ## TimeStepSize = 2*pi/100.  The Hessian (from any source) is asked for
 ## one node at a time.  For long runs this is the fastest form: Kepler
 ## (e = 0.6) over 1000 periods with Nodes = 8, Q_DoFs = 9 and
@@ -148,14 +148,14 @@
 ## @qcode{"kept"}: Newton's matrix (from the node Jacobians) and its LU
 ## are kept across steps while Newton converges fast; between
 ## evaluations the node Jacobians are extrapolated in time.  Two
-## corrections per step are typical (2.49 on Kepler, (4,3), h = 2*pi/100,
-## with the Hessian as second output of @var{fcn}: 7.47 calls per step,
-## 0.63 of them with two outputs).
+## corrections per step are typical (2.37 on Kepler, (4,3), h = 2*pi/100,
+## with the Hessian as second output of @var{fcn}: 7.11 calls per step,
+## 0.57 of them with two outputs).
 ## @qcode{"new"}: a new matrix at every step's predicted start, whose
 ## first correction is then exact Newton; the step stops after it when
 ## its quadratic error, estimated from earlier steps, is far below
-## NewtonTol (1.60 corrections per step on Kepler: with the Hessian as
-## second output of @var{fcn}, 3 calls with two outputs and 1.80 with one
+## NewtonTol (1.57 corrections per step on Kepler: with the Hessian as
+## second output of @var{fcn}, 3 calls with two outputs and 1.71 with one
 ## per step).  Fewer calls, but Hessians on every step: faster when the
 ## Hessian is cheap beside f.  Default @qcode{"auto"}: @qcode{"new"} with
 ## Vectorized finite-difference matrices of at most 64 unknowns
@@ -166,12 +166,12 @@
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).  With
 ## a fixed step the result of a step is converged to NewtonTol/100; in
-## adaptive mode see RelTol.  The error a fixed step leaves can keep its
-## sign from step to step, so it is held far below round-off: on a
-## non-separable rotation-invariant H in 3-D the angular momentum stays
-## within 2e-14 over 10000 steps (@file{tests/test_spvi.m}; it drifted to
-## 2.1e-13 when the step's last linear move of f was checked against
-## NewtonTol/100 only).
+## adaptive mode see RelTol.  That keeps Kepler's angular momentum at
+## round-off (1000 periods), but the error left has a sign that can
+## persist from step to step: on a non-separable rotation-invariant H in
+## 3-D the angular momentum drifted by 2.1e-13 over 10000 steps, and
+## NewtonTol = 1e-16 kept it at round-off (3e-15) for 10% more calls
+## (@file{tests/test_spvi.m}).
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45} (arguments, outputs and events as in @code{help
 ## odeSE}); output times, refined rows and event locations come
@@ -222,8 +222,8 @@
 ## step this costs Nodes calls
 ## of the Events function and the call of @var{fcn} at the step's end
 ## (above): on Kepler with a fixed step 2*pi/100 and an @var{fcn} without
-## the Hessian (finite-difference matrices), 11.0 instead of 10.0 calls
-## of @var{fcn} per step.
+## the Hessian (finite-difference matrices), 10.4 instead of 9.4 calls of
+## @var{fcn} per step.
 ## @end table
 ##
 ## A run that cannot go on (Newton fails with the fixed step or at the
@@ -240,8 +240,8 @@
 ##
 ## Example: Kepler's problem (eccentricity 0.6) over 100 periods with a
 ## fixed step; the energy error stays bounded.  The Hessian is built only
-## when asked for (nargout > 1): most calls need f alone (0.63 of the
-## 7.47 calls per step ask for it, see NewtonMatrix).
+## when asked for (nargout > 1): most calls need f alone (0.57 of the
+## 7.11 calls per step ask for it, see NewtonMatrix).
 ##
 ## @example
 ## @group

@@ -143,9 +143,6 @@
 /* at most this many corrections after sym_newton for the linear move of
    f_p (see core_solve) */
 #define SPVI_MOVE_MAX 3
-/* A fixed step checks that move's error against SPVI_MOVE_FIXED times
-   the tolerance of its solve (see core_solve) */
-#define SPVI_MOVE_FIXED 3e-2
 /* Extrapolated node Jacobians: from evaluations at most SPVI_JX_STEPS
    steps back, through at most SPVI_JX_POINTS of their nodes (the latest),
    the older evaluation only when at most SPVI_JX_SPAN steps before the
@@ -226,7 +223,6 @@ typedef struct {
 typedef struct {
   int d, n, m, order;
   int pred_cont;       /* the last start continued the step before */
-  int fixed;           /* the step being solved has no error estimate */
   int hermite;         /* dense output of the pairs n - 1 != m of order
                           below 8: cubic Hermite through the step's
                           ends (see spvi_dense) */
@@ -1001,26 +997,9 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
      moving f_p only by that much smaller one: an extra residual on every
      step.)  After a single exact correction (nw.one) the Jacobians of the
      move are those at xf itself: its error is the quadratic remainder,
-     of the order that sym_newton's estimate kq |dx_1|^2 has bounded.
-     A fixed step checks the move against SPVI_MOVE_FIXED times its
-     tolerance (3e-18 relative by default).  The move's error has a sign
-     that persists from step to step, and checked against the tolerance
-     itself it added up: on H = |p|^2/2 (1 + |q|^2/4) - 1/|q| in 3-D
-     (non-separable, rotation-invariant; h = 2 pi/200, finite-difference
-     matrices) the angular momentum drifted linearly by 4.5e-13 over 20000
-     steps, and with (5,4) the mean energy error moved from -2.5e-13 to
-     -3.9e-13 over 40000 steps.  Against 1e-1 of the tolerance: 7.9e-14,
-     energy -2.4e-13 to -2.5e-13; 3e-2: 4.2e-14 (sqrt(20000) eps |L| is
-     2.6e-14), the energy stays (-2.38e-13, -2.33e-13), for 5% more calls
-     on Kepler (4,3), h = 2 pi/100 (7.11 -> 7.47 per step) and 8% on that
-     problem; 1e-2: 7.2e-15, but 9% more calls, and then the corrections
-     follow the last bits of f (tests/c/test_spvi_kepler.c: the work does
-     not).  Adaptive steps keep the tolerance: they are not symplectic
-     maps to begin with. */
-  const double move_tol = s->fixed ? SPVI_MOVE_FIXED * c->nw.tol
-                                   : c->nw.tol;
+     of the order that sym_newton's estimate kq |dx_1|^2 has bounded. */
   for (int k = 0; ! st && fast && ! c->nw.one && k < SPVI_MOVE_MAX
-                  && core_move_error (c, S) > move_tol; k++)
+                  && core_move_error (c, S) > c->nw.tol; k++)
     {
       if ((st = core_residual (c, c->x, c->nw.r)))
         break;
@@ -1580,7 +1559,6 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
   s->trial_ok = 0;
   if (! (h != 0.0) || ! isfinite (h) || ! isfinite (t))
     return SYM_EBADINPUT;
-  s->fixed = ! yerr;
   if (yerr && ! s->have_hi)
     {
       int st = core_init (&s->hi, d, n + 1, m + 1);
