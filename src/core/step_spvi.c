@@ -130,9 +130,6 @@
    SPVI_THETA_FRESH (see core_solve). */
 #define SPVI_REFRESH_ITERS 2
 #define SPVI_THETA_FRESH 5e-5
-/* The estimated error of the returned solution is bounded by
-   SPVI_FINAL_TOL times the Newton tolerance (see core_solve) */
-#define SPVI_FINAL_TOL 1e-2
 /* Adaptive steps: the solves of the pairs n - 1 = m stop when the error
    of their result is below these fractions of the smallest error the
    tolerances allow (sym_error_floor): the method's, which only enters
@@ -875,7 +872,7 @@ core_move_error (spvi_core *c, double S)
    the solution and yend = [q_{k+1}; p_{k+1}].  c is the method's core
    (s->lo) or the companion's (s->hi).  For the pairs n - 1 = m (the
    companion of such a pair is one too) tol bounds the estimated error of
-   the result relative to S: SPVI_FINAL_TOL times the Newton tolerance
+   the result relative to S: SYM_FIXED_TOL times the Newton tolerance
    (round-off) for a fixed step, looser in adaptive runs (see spvi_step).
 
    The pairs n - 1 != m keep the earlier scheme (sym_newton to the Newton
@@ -1589,7 +1586,7 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
      and the companion's interpolated matrices (core_borrow) to 3629 4750
      8005 13330 24879; 3635 at 1e-4 now, with one check of the Jacobian
      after a Newton failure (driver.c). */
-  const double tol_rf = SPVI_FINAL_TOL * s->tol;
+  const double tol_rf = SYM_FIXED_TOL * s->tol;
   const double w = yerr && s->est_rtol > 0
                    ? sym_error_floor (nn, y, s->est_rtol, s->est_atol) : 0.0;
   const double tol_lo = fmax (tol_rf, SPVI_EST_LO * w / S);

@@ -14,8 +14,11 @@
 #define SYM_NW_BASE 2
 
 /* A fixed step (no error estimate wanted) is solved to SYM_FIXED_TOL
-   times the Newton tolerance (round-off: 1e-16 relative by default, the
-   residual check then at 8 eps), an adaptive one to the tolerance itself.
+   times the Newton tolerance, in all three steppers (odeSPVI: the
+   estimated error of the returned solution, see core_solve in
+   step_spvi.c); for odeSE and odeSV, round-off: 1e-16 relative by
+   default, the residual check then at 8 eps; an adaptive step to the
+   tolerance itself (odeSPVI: see spvi_step).
    With the matrix kept, the error a stop leaves has the same sign from
    step to step, so it adds up: on H = |p|^2/2 (1 + |q|^2/4) - 1/|q| in
    3-D (rotation-invariant, non-separable; h = 2 pi/200, finite-difference

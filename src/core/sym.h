@@ -290,7 +290,10 @@ extern const sym_stepper_type *const sym_step_spvi;
 typedef int (*sym_event_fn) (double t, const double *y, double *value,
                              int *isterminal, int *direction, void *user);
 /* Output sink: one row (t, y).  Return 0 to go on, 1 to stop the run,
-   < 0 on error. */
+   < 0 on error.  A step's events go to the event sink before its rows
+   go out, so a stop at a row inside a step leaves events after that row
+   reported (the Octave layer drops them, as ode45 returns none after
+   t(end)). */
 typedef int (*sym_output_fn) (double t, const double *y, void *user);
 /* Event sink: an event located at (te, ye), index ie (0-based). */
 typedef int (*sym_eventout_fn) (double te, const double *ye, int ie,
