@@ -77,7 +77,12 @@
 ## m (default 3), n (default m+1); @code{PolynomialDegree} sets
 ## n = degree+1 (and m = degree+1 unless @code{Nodes} is given).  Two
 ## names of one number (Nodes and P_DoFs; Q_DoFs and PolynomialDegree)
-## may both be given only with values that agree.
+## may both be given only with values that agree.  Many nodes work at
+## long steps: each step starts from the last step's polynomials
+## extrapolated, with only their modes above the solve's round-off (the
+## extrapolation amplifies the others like 5.8^Nodes); on the rotation
+## H = (q^2+p^2)^2/4 from (1, 0.5) with h = 1, Nodes = 20 and 30 run to
+## t = 40 within 1e-12 of the exact solution (@file{tests/test_spvi.m}).
 ## @item TimeStepSize, TimeStepNumber
 ## Fixed step (the last step ends exactly on tf) or a fixed number of
 ## steps: no error control; the geometric guarantees hold in this mode.
