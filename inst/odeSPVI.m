@@ -83,6 +83,11 @@
 ## extrapolation amplifies the others like 5.8^Nodes); on the rotation
 ## H = (q^2+p^2)^2/4 from (1, 0.5) with h = 1, Nodes = 20 and 30 run to
 ## t = 40 within 1e-12 of the exact solution (@file{tests/test_spvi.m}).
+## A fixed step that Newton cannot solve from its start is reached from
+## shorter steps (h/2, h/4, ... down to h/64, each solution extended as
+## the start of the step twice as long): on that rotation h = 2 with
+## Nodes = 8 and h = 2.5 with Nodes = 12 failed at the first step and
+## now reach t = 40 with errors of 3.4e-10 and 4.5e-14.
 ## @item TimeStepSize, TimeStepNumber
 ## Fixed step (the last step ends exactly on tf) or a fixed number of
 ## steps: no error control; the geometric guarantees hold in this mode.

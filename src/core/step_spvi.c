@@ -163,6 +163,9 @@
    amplified, it can exceed SPVI_PRED_NOISE |y|; modes below SPVI_CHOP
    times their noise are cut */
 #define SPVI_PRED_NOISE 1e-6
+/* A fixed step that Newton cannot solve from its starts is reached from
+   steps down to h/2^SPVI_HALVINGS (see spvi_lengthen) */
+#define SPVI_HALVINGS 6
 #define SPVI_CHOP 10.0
 /* By default a new matrix at the start of every solve (see core_solve)
    only while its LU is this small: measured here, the LU of 64 unknowns takes about
@@ -1427,8 +1430,8 @@ top_mode (const double *c, int nm, int d, int lo, int pw, double noise)
 }
 
 /* The continued prediction evaluates the last step's polynomials at z =
-   1 + rho (z' + 1), up to 1 + 2 rho, outside [-1, 1], where Legendre
-   modes grow like |l_i(1 + 2 rho)| (about 5.8^i / 6 at rho = 1).  The
+   1 + rho (z' + 1), up to zmax = 1 + 2 rho, outside [-1, 1], where
+   Legendre modes grow like |l_i(zmax)| (about 5.8^i / 6 at rho = 1).  The
    solve left a noise of about r->noise in each a_i (q), and about (2i +
    1) r->noise in the i-th Legendre coefficient of the p polynomial
    (through p_k, P_j, p_{k+1}), and the continuation amplifies them by as
@@ -1454,13 +1457,13 @@ top_mode (const double *c, int nm, int d, int lo, int pw, double noise)
    the highest Legendre mode of p to use, or m + 1 for the p polynomial
    itself (rec_p); q's modes are in s->ach. */
 static int
-predict_modes (spvi_state *s, const spvi_rec *r, double rho, double ynorm)
+predict_modes (spvi_state *s, const spvi_rec *r, double zmax, double ynorm)
 {
   const int d = s->d, n = s->n, m = s->m;
   const size_t na = (size_t) (n - 1) * d;
   const int nl = n > m + 2 ? n : m + 2;
   memcpy (s->ach, r->a, na * sizeof (double));
-  sym_legendre (nl, 1.0 + 2.0 * fabs (rho), s->lv, s->dlv);
+  sym_legendre (nl, zmax, s->lv, s->dlv);
   double amp = 0.0;
   for (int i = 1; i < n; i++)
     amp += fabs (s->lv[i]) + 1.0;
@@ -1517,6 +1520,73 @@ predict_sane (const spvi_state *s, const spvi_rec *r, double rho,
   return isfinite (dev) && dev <= SPVI_PRED_SANE * (1.0 + fabs (rho)) * prev;
 }
 
+/* The start x = (a, P) in s->lo.x from the polynomials of the solved
+   step r evaluated at its z = z0 + rho (z' + 1) for the new step's z'
+   (z0 = 1: the step after r; z0 = -1: a step from r's start, rho times
+   as long), with only their modes above the noise (predict_modes). */
+static void
+predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
+              double ynorm)
+{
+  const int d = s->d, n = s->n, m = s->m;
+  double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
+  int kp = predict_modes (s, r, z0 + 2.0 * fabs (rho), ynorm);
+  for (int l = 0; l < n; l++)
+    modes_dq (s, s->ach, z0 + rho * (s->xi[l] + 1.0),
+              s->vq + (size_t) l * d);
+  /* q(z) - q(z0) of the old step, the new step's increments; the
+     constant part drops out of a_i, i >= 1 */
+  for (int i = 1; i < n; i++)
+    for (int k = 0; k < d; k++)
+      {
+        double q0 = z0 > 0 ? r->y1[k] - r->y0[k] : 0.0;
+        double v = 0.0;
+        for (int l = 0; l < n; l++)
+          v += s->vinv[i * n + l] * (s->vq[(size_t) l * d + k] - q0);
+        a[(size_t) (i - 1) * d + k] = v;
+      }
+  for (int j = 0; j < m; j++)
+    {
+      double z = z0 + rho * (s->lo.z[j] + 1.0);
+      if (kp > m)
+        {
+          rec_p (s, r, z, P + (size_t) j * d);
+          continue;
+        }
+      sym_legendre (kp + 1, z, s->lv, s->dlv);
+      for (int k = 0; k < d; k++)
+        {
+          double v = 0.0;
+          for (int i = 0; i <= kp; i++)
+            v += s->pc[(size_t) i * d + k] * s->lv[i];
+          P[(size_t) j * d + k] = v;
+        }
+    }
+}
+
+/* One scale for all unknowns of the step from y starting at s->lo.x: the
+   size of the state over the step.  A per-component scale cannot be met
+   below the round-off that f's coupling carries from the large
+   components into the small ones (the iteration would stagnate and
+   fail), and the a_i (increments of q) and P_j are all measured against
+   it: q_{k+1} and p_{k+1} are then converged to tol relative to |y|. */
+static double
+start_scale (const spvi_state *s, const double *y)
+{
+  const int d = s->d, n = s->n, m = s->m;
+  const double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
+  double qend = 0.0;
+  for (int k = 0; k < d; k++)
+    {
+      double v = y[k];
+      for (int i = 1; i < n; i += 2)
+        v += 2.0 * a[(size_t) (i - 1) * d + k];
+      qend = fmax (qend, fabs (v));
+    }
+  double sc = fmax (inf_norm (2 * d, y), fmax (qend, inf_norm (m * d, P)));
+  return sc > 0 ? sc : 1.0;
+}
+
 /* The start of Newton for the step (t, h, y) into s->lo.x; returns the
    scale of the stopping test in *S. */
 static int
@@ -1535,45 +1605,13 @@ predict (spvi_state *s, sym_system *sys, double t, double h, const double *y,
                                       + 4 * DBL_EPSILON * fabs (t);
   for (int k = 0; cont && k < 2 * d; k++)
     cont = fabs (y[k] - r->y1[k]) <= 1e-12 * ynorm;
-  double qend = 0.0;
   /* the same h (up to the round-off of fixed steps t0 + k h) */
   s->trial->cont = cont && fabs (h - r->h) <= 1e-10 * fabs (h);
   if (cont)
     {
       /* new z' <-> old z = 1 + rho (z' + 1) */
       double rho = h / r->h;
-      int kp = predict_modes (s, r, rho, ynorm);
-      for (int l = 0; l < n; l++)
-        modes_dq (s, s->ach, 1.0 + rho * (s->xi[l] + 1.0),
-                  s->vq + (size_t) l * d);
-      /* q(z) - q_{k+1} of the old step; its constant part drops out of
-         a_i, i >= 1 */
-      for (int i = 1; i < n; i++)
-        for (int k = 0; k < d; k++)
-          {
-            double v = 0.0;
-            for (int l = 0; l < n; l++)
-              v += s->vinv[i * n + l]
-                   * (s->vq[(size_t) l * d + k] - (r->y1[k] - r->y0[k]));
-            a[(size_t) (i - 1) * d + k] = v;
-          }
-      for (int j = 0; j < m; j++)
-        {
-          double z = 1.0 + rho * (s->lo.z[j] + 1.0);
-          if (kp > m)
-            {
-              rec_p (s, r, z, P + (size_t) j * d);
-              continue;
-            }
-          sym_legendre (kp + 1, z, s->lv, s->dlv);
-          for (int k = 0; k < d; k++)
-            {
-              double v = 0.0;
-              for (int i = 0; i <= kp; i++)
-                v += s->pc[(size_t) i * d + k] * s->lv[i];
-              P[(size_t) j * d + k] = v;
-            }
-        }
+      predict_poly (s, r, 1.0, rho, ynorm);
       cont = predict_sane (s, r, rho, y);
       s->trial->cont = s->trial->cont && cont;
     }
@@ -1595,21 +1633,7 @@ predict (spvi_state *s, sym_system *sys, double t, double h, const double *y,
                                       * s->f0[d + k];
         }
     }
-  for (int k = 0; k < d; k++)
-    {
-      double v = y[k];
-      for (int i = 1; i < n; i += 2)
-        v += 2.0 * a[(size_t) (i - 1) * d + k];
-      qend = fmax (qend, fabs (v));
-    }
-  /* One scale for all unknowns: the size of the state over the step.  A
-     per-component scale cannot be met below the round-off that f's
-     coupling carries from the large components into the small ones (the
-     iteration would stagnate and fail), and the a_i (increments of q) and
-     P_j are all measured against it: q_{k+1} and p_{k+1} are then
-     converged to tol relative to |y|. */
-  double sc = fmax (ynorm, fmax (qend, inf_norm (m * d, P)));
-  *S = sc > 0 ? sc : 1.0;
+  *S = start_scale (s, y);
   return SYM_SUCCESS;
 }
 
@@ -1671,6 +1695,47 @@ predict_history (spvi_state *s, double h)
   for (int l = 0; l < best_l; l++)
     for (int i = 0; i < N; i++)
       s->lo.x[i] += XC[best_l][l] * s->dhist[(size_t) l * N + i];
+}
+
+/* A fixed step whose Newton failed from both starts (continued and
+   Euler) is reached from shorter ones: the step h/2^k from the Euler
+   start for the smallest k <= SPVI_HALVINGS that converges, then each
+   solution's polynomials extended to twice its length (predict_poly)
+   as the start of the step twice as long, up to h.  This follows the
+   solution of the step equations that tends to the identity as h -> 0,
+   where Newton from the Euler start, off by O(h |f'|), diverges.
+   Measured on H = (q^2 + p^2)^2/4 from (1, 0.5) (a rotation at the
+   rate 1.25): the first step failed for h = 1.5, 2, 2.5 with Nodes = 5,
+   8, 12, 20; now these runs go through (tests/c/test_spvi.c).  On
+   success the solution of (t, h) is in s->lo and tr->y1, its scale in
+   *S. */
+static int
+spvi_lengthen (spvi_state *s, sym_system *sys, double t, double h,
+               double tol, double *S)
+{
+  spvi_rec *tr = s->trial;
+  const int d = s->d, na = (s->n - 1) * d;
+  const double *y = tr->y0;
+  int k, st = SYM_NEWTON_FAIL;
+  for (k = 1; k <= SPVI_HALVINGS && st == SYM_NEWTON_FAIL; k++)
+    {
+      st = predict (s, sys, t, ldexp (h, -k), y, 1, S);
+      if (! st)
+        st = core_solve (&s->lo, sys, t, ldexp (h, -k), y, *S, s, tol,
+                         tr->y1);
+    }
+  /* solved h/2^(k-1); then h/2^(k-2), ..., h */
+  for (k -= 2; ! st && k >= 0; k--)
+    {
+      memcpy (tr->a, s->lo.x, (size_t) na * sizeof (double));
+      memcpy (tr->P, s->lo.x + na, (size_t) s->m * d * sizeof (double));
+      tr->noise = fmax (tol, DBL_EPSILON) * *S;
+      predict_poly (s, tr, -1.0, 2.0, inf_norm (2 * d, y));
+      *S = start_scale (s, y);
+      st = core_solve (&s->lo, sys, t, ldexp (h, -k), y, *S, s, tol,
+                       tr->y1);
+    }
+  return st;
 }
 
 static int
@@ -1739,6 +1804,9 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
           st = core_solve (&s->lo, sys, t, h, tr->y0, S, s, tol_lo, tr->y1);
         }
     }
+  /* Fixed steps only, as above */
+  if (st == SYM_NEWTON_FAIL && ! yerr)
+    st = spvi_lengthen (s, sys, t, h, tol_lo, &S);
   if (st)
     return st;
   memcpy (tr->a, s->lo.x, (size_t) (n - 1) * d * sizeof (double));
