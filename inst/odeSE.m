@@ -156,7 +156,10 @@
 ## (it has no sign); DIRECTION must hold -1, 0 or 1 (other values, which
 ## @code{ode45} takes as a direction that never occurs, are errors).
 ## Events located at the time of a terminal event (within the round-off
-## of their location) are reported with it.
+## of their location) are reported with it.  @var{te} and @var{ie} are
+## columns, @var{ye} has a row per event (@code{sol.xe}, @code{sol.ye},
+## @code{sol.ie} likewise); with no event all three are 0-by-0, as in
+## @code{ode45}.
 ## @code{Refine}
 ## (default 1: step points only, where the method's properties hold) adds
 ## interpolated rows between steps; as in @code{ode45} it is ignored with

@@ -138,6 +138,25 @@
 %! endfor
 
 %!test
+%! ## the shapes of the event outputs, as ode45's: with no event all are
+%! ## 0-by-0 (they were 0-by-1, 0-by-2, 0-by-1), with k events te and ie
+%! ## are k-by-1 and ye k-by-2
+%! f = @(t, y) [y(2); -y(1)];
+%! for ev = {@(t, y) deal(y(1) - 5, 0, 0), @(t, y) deal(y(1), 0, 0)}
+%!   o = odeset ("Events", ev{1});
+%!   [~, ~, te0, ye0, ie0] = ode45 (f, [0 4], [1; 0], o);
+%!   s0 = ode45 (f, [0 4], [1; 0], o);
+%!   for i = 1:3
+%!     [~, ~, te, ye, ie] = solvers{i} (f, [0 4], [1; 0], o);
+%!     assert ([size(te); size(ye); size(ie)], [size(te0); size(ye0); size(ie0)]);
+%!     s = solvers{i} (f, [0 4], [1; 0], o);
+%!     assert ([size(s.xe); size(s.ye); size(s.ie)], [size(s0.xe); size(s0.ye); size(s0.ie)]);
+%!   endfor
+%! endfor
+%! [~, ~, te, ye, ie] = odeSV (f, [0 1], [1; 0]);
+%! assert ([size(te); size(ye); size(ie)], zeros (3, 2));
+
+%!test
 %! ## harmonic oscillator, q = 0 at pi/2 + k pi: odeSPVI to 1e-10
 %! f = @(t, y) [y(2); -y(1)];
 %! texact = pi/2 + (0:2)' * pi;

@@ -634,6 +634,26 @@ column_of (const double *v, size_t k)
   return a;
 }
 
+/* The events found: te (column), ye (one row each), ie (column, 1-based);
+   with none, all three 0-by-0, as ode45 returns them */
+static void
+event_outputs (const ctx_t *c, int n, mxArray **te, mxArray **ye,
+               mxArray **ie)
+{
+  if (c->nev == 0)
+    {
+      *te = mxCreateDoubleMatrix (0, 0, mxREAL);
+      *ye = mxCreateDoubleMatrix (0, 0, mxREAL);
+      *ie = mxCreateDoubleMatrix (0, 0, mxREAL);
+      return;
+    }
+  *te = column_of (c->te, c->nev);
+  *ye = rows_matrix (c->ye, c->nev, n);
+  *ie = mxCreateDoubleMatrix (c->nev, 1, mxREAL);
+  for (size_t i = 0; i < c->nev; i++)
+    mxGetPr (*ie)[i] = c->ie[i] + 1;
+}
+
 static const char *
 jac_source_name (int s)
 {
@@ -1126,11 +1146,10 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
       mxSetField (s, 0, "solver", mxCreateString (name));
       if (has_ev)
         {
-          mxSetField (s, 0, "xe", column_of (c->te, c->nev));
-          mxSetField (s, 0, "ye", rows_matrix (c->ye, c->nev, n));
-          mxArray *ie = mxCreateDoubleMatrix (c->nev, 1, mxREAL);
-          for (size_t i = 0; i < c->nev; i++)
-            mxGetPr (ie)[i] = c->ie[i] + 1;
+          mxArray *te, *ye, *ie;
+          event_outputs (c, n, &te, &ye, &ie);
+          mxSetField (s, 0, "xe", te);
+          mxSetField (s, 0, "ye", ye);
           mxSetField (s, 0, "ie", ie);
         }
       mxSetField (s, 0, "stats", stats_struct (&sys.cnt, jac_used));
@@ -1163,15 +1182,16 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
     plhs[1] = rows_matrix (c->ybuf, c->nrows, n);
   if (nlhs > 2)
     {
-      plhs[2] = column_of (c->te, c->nev);
+      mxArray *te, *ye, *ie;
+      event_outputs (c, n, &te, &ye, &ie);
+      plhs[2] = te;
       if (nlhs > 3)
-        plhs[3] = rows_matrix (c->ye, c->nev, n);
+        plhs[3] = ye;
+      else
+        mxDestroyArray (ye);
       if (nlhs > 4)
-        {
-          mxArray *ie = mxCreateDoubleMatrix (c->nev, 1, mxREAL);
-          for (size_t i = 0; i < c->nev; i++)
-            mxGetPr (ie)[i] = c->ie[i] + 1;
-          plhs[4] = ie;
-        }
+        plhs[4] = ie;
+      else
+        mxDestroyArray (ie);
     }
 }
