@@ -1729,7 +1729,7 @@ spvi_lengthen (spvi_state *s, sym_system *sys, double t, double h,
     {
       memcpy (tr->a, s->lo.x, (size_t) na * sizeof (double));
       memcpy (tr->P, s->lo.x + na, (size_t) s->m * d * sizeof (double));
-      tr->noise = fmax (tol, DBL_EPSILON) * *S;
+      tr->noise = fmax (s->n - 1 == s->m ? tol : s->tol, DBL_EPSILON) * *S;
       predict_poly (s, tr, -1.0, 2.0, inf_norm (2 * d, y));
       *S = start_scale (s, y);
       st = core_solve (&s->lo, sys, t, ldexp (h, -k), y, *S, s, tol,
