@@ -1313,7 +1313,8 @@ rec_p (const spvi_state *s, const spvi_rec *r, double z, double *p)
     }
 }
 
-/* q(z) - q_k of the modes a (a_1..a_{n-1}, d values each), into q */
+/* q(z) - q_k of the modes a (a_1..a_{n-1}, d values each; a step's
+   r->a), into q */
 static void
 modes_dq (const spvi_state *s, const double *a, double z, double *q)
 {
@@ -1327,13 +1328,6 @@ modes_dq (const spvi_state *s, const double *a, double z, double *q)
              * (s->lv[i] - ((i % 2) ? -1.0 : 1.0));
       q[k] = v;
     }
-}
-
-/* q(z) - q_k of step r, into q (d values). */
-static void
-rec_dq (const spvi_state *s, const spvi_rec *r, double z, double *q)
-{
-  modes_dq (s, r->a, z, q);
 }
 
 /* The dense output's data from the solve c (at its final x) into r: the
@@ -1945,7 +1939,7 @@ spvi_dense (void *state, sym_system *sys, double t, double *y)
          then its solution's own polynomials */
       r->ends_bad = 1;
     }
-  rec_dq (s, r, z, y);
+  modes_dq (s, r->a, z, y);
   for (int k = 0; k < d; k++)
     y[k] += r->y0[k] + (r->has_dq ? 0.5 * (z + 1.0) * r->dq[k] : 0.0);
   rec_p (s, r, z, y + d);

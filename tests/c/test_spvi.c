@@ -1092,64 +1092,62 @@ quartic_jac (double t, const double *y, double *df, void *user)
   return 0;
 }
 
+/* (Nodes + 1, Nodes) on the rotation from (1, 0.5) with steps h to t
+   = 40 (nearest step point): the status, the error there against the
+   exact solution into *err, the Newton corrections per step into *its */
+static int
+rotation_run (int m, double h, double *err, double *its)
+{
+  sym_system sys = ts_system (1, quartic, quartic_jac, NULL);
+  sym_method_opts o = ts_opts (m + 1, m);
+  int st;
+  void *s = T->alloc (&sys, &o, &st);
+  double y[2] = { 1.0, 0.5 };
+  const int ns = (int) (40.0 / h);
+  st = ts_run_fixed (T, s, &sys, 0.0, h, ns, y);
+  double t = ns * h, w = 1.25;
+  *err = fmax (fabs (y[0] - (cos (w * t) + 0.5 * sin (w * t))),
+               fabs (y[1] - (-sin (w * t) + 0.5 * cos (w * t))));
+  *its = (double) sys.cnt.nnewton / ns;
+  printf ("rotation, Nodes = %d, h = %g, %d steps: error %.2e, %.2f "
+          "corrections per step\n", m, h, ns, *err, *its);
+  T->free (s);
+  return st;
+}
+
 /* Many nodes at a long step: the continued prediction, whose noise the
    continuation amplifies like 5.8^Nodes, is cut to the modes above its
    noise (predict_modes).  Before, on this rotation (rate 1.25) from
    (1, 0.5) with h = 1, Nodes = 20 failed at t = 22 (8.05 corrections per
    step), Nodes = 25, 30, 40 at t = 2, and Nodes = 15 took 4.20
    corrections per step; measured now 3.27-3.58 for Nodes = 15..40, every
-   run to t = 40 within 1e-13 of the exact solution. */
+   run to t = 40 within 1e-13 of the exact solution.  Steps so long that
+   Newton fails from the Euler start of the first step (off by O(h
+   |f'|)) are reached from shorter steps (spvi_lengthen): before, the
+   runs of the second table failed at t = 0; measured now: errors 3.7e-4,
+   4.3e-12, 3.4e-10, 8.9e-16, 3.3e-14. */
 static void
 test_many_nodes (void)
 {
   const int ms[] = { 15, 20, 25, 30, 40 };
+  double err, its;
   for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++)
     {
-      sym_system sys = ts_system (1, quartic, quartic_jac, NULL);
-      sym_method_opts o = ts_opts (ms[i] + 1, ms[i]);
-      int st;
-      void *s = T->alloc (&sys, &o, &st);
-      double y[2] = { 1.0, 0.5 };
-      const int ns = 40;
-      st = ts_run_fixed (T, s, &sys, 0.0, 1.0, ns, y);
-      double t = ns, w = 1.25;
-      double err = fmax (fabs (y[0] - (cos (w * t) + 0.5 * sin (w * t))),
-                         fabs (y[1] - (-sin (w * t) + 0.5 * cos (w * t))));
-      double its = (double) sys.cnt.nnewton / ns;
-      printf ("rotation, Nodes = %d, h = 1, 40 steps: error %.2e, %.2f "
-              "corrections per step\n", ms[i], err, its);
+      int st = rotation_run (ms[i], 1.0, &err, &its);
       CHECK (st == 0 && err < 1e-12 && its < 4.0, "Nodes = %d: status %d "
              "(%s), error %.3g, %.2f corrections per step", ms[i], st,
              sym_status_name (st), err, its);
-      T->free (s);
     }
-  /* Steps so long that Newton fails from the Euler start of the first
-     step (off by O(h |f'|)): reached from shorter steps
-     (spvi_lengthen).  Before, all these runs failed at t = 0; measured
-     now: errors 3.7e-4, 4.3e-12, 3.4e-10, 8.9e-16, 3.3e-14 */
   const struct { int m; double h, tol; } ls[] = {
     { 5, 2.0, 1e-3 }, { 8, 1.5, 1e-10 }, { 8, 2.0, 1e-9 },
     { 12, 2.5, 1e-12 }, { 20, 2.0, 1e-12 }
   };
   for (size_t i = 0; i < sizeof ls / sizeof ls[0]; i++)
     {
-      sym_system sys = ts_system (1, quartic, quartic_jac, NULL);
-      sym_method_opts o = ts_opts (ls[i].m + 1, ls[i].m);
-      int st;
-      void *s = T->alloc (&sys, &o, &st);
-      double y[2] = { 1.0, 0.5 };
-      const int ns = (int) (40.0 / ls[i].h);
-      st = ts_run_fixed (T, s, &sys, 0.0, ls[i].h, ns, y);
-      double t = ns * ls[i].h, w = 1.25;
-      double err = fmax (fabs (y[0] - (cos (w * t) + 0.5 * sin (w * t))),
-                         fabs (y[1] - (-sin (w * t) + 0.5 * cos (w * t))));
-      printf ("rotation, Nodes = %d, h = %g, %d steps: error %.2e, %.2f "
-              "corrections per step\n", ls[i].m, ls[i].h, ns, err,
-              (double) sys.cnt.nnewton / ns);
+      int st = rotation_run (ls[i].m, ls[i].h, &err, &its);
       CHECK (st == 0 && err < ls[i].tol, "Nodes = %d, h = %g: status %d "
              "(%s), error %.3g", ls[i].m, ls[i].h, st, sym_status_name (st),
              err);
-      T->free (s);
     }
 }
 
