@@ -117,8 +117,15 @@
 ## says from which t.  (At most three checks that agree are made in a
 ## run: each costs a Jacobian and 2d+1 calls of @var{fcn}.)  Newton's
 ## stopping test measures its corrections, so a matrix too large by many
-## orders of magnitude makes them tiny and can pass unconverged steps as
-## converged: the results are then wrong.
+## orders of magnitude (1e12) would make them tiny and pass unconverged
+## steps as converged.  So the first Jacobian or Hessian given is probed
+## at its point, at the cost of two calls of @var{fcn} (one when it is
+## the second output of @var{fcn}): the change of @var{fcn} over a small
+## step along one direction against df/dy times that step.  When they
+## differ by more than 100 times the change, finite differences serve
+## from there on (@code{stats.jacobian_source} says from which t); a
+## matrix too small, of the wrong sign or missing dF/dy is left to the
+## check above.
 ## @code{stats.jacobian_source} says which was used.  Sparse matrices
 ## (here, in the other options, in @var{tspan}, @var{y0} and in what
 ## @var{fcn} returns) are taken as full.

@@ -134,7 +134,13 @@
 ## The matrix is kept and
 ## reused while Newton converges fast, or new on every step (see
 ## NewtonMatrix).  @code{stats.jacobian_source} tells
-## which source was used.  With the second output of @var{fcn}, one call
+## which source was used.  A Jacobian or Hessian given is dropped for
+## finite differences as in @code{odeSE}: when Newton fails with it and it
+## disagrees with them, or when the first one differs from the change of
+## @var{fcn} along one direction by more than 100 times that change (a
+## matrix far too large, which would let unconverged steps pass as
+## converged; this probe costs one or two calls of @var{fcn} in a run).
+## With the second output of @var{fcn}, one call
 ## with two outputs gives both the Hessian and f at a node, and the
 ## residual there uses that f: @code{stats.npds} counts these calls and
 ## @code{stats.nfevals} the calls with one output, so that their sum is

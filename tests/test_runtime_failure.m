@@ -25,6 +25,14 @@
 %!  hs = [NaN 0; 0 1];
 %!endfunction
 
+## H = p^2/2 (1 + q^2/4) + q^2/2 (not separable) with its Hessian times
+## c as second output
+%!function [dy, hs] = fcn_scaled_hessian (t, y, c)
+%!  q = y(1);  p = y(2);
+%!  dy = [p * (1 + q^2/4); -(p^2 * q/4 + q)];
+%!  hs = c * [p^2/4 + 1, p*q/2; p*q/2, 1 + q^2/4];
+%!endfunction
+
 %!shared all3, osc
 %! all3 = {@odeSE, @odeSV, @odeSPVI};
 %! osc = @(t, y) [y(2); -y(1)];
@@ -181,6 +189,34 @@
 %! assert (sol.stats.nsteps < 50);    # before: 261771 steps, 16 million calls
 %! assert (sol.y(:, end), [cos(2); -sin(2)], 1e-3);
 %! assert (regexp (sol.stats.jacobian_source, '^Jacobian \(constant matrix\), then finite differences of FCN from t = '));
+
+## A Hessian far too large (a user's of 1e12 or 1e14 times H's): Newton's
+## corrections were below round-off from the first on, each solve was
+## accepted at its start, and the runs ended far from the solution with
+## no word (odeSPVI's energy error 4e2 with 1e12, odeSV's 1.2e-2 with 1e14
+## against 8e-6).  The first Hessian is probed against f along one
+## direction and dropped: the runs are those of finite differences.
+%!test
+%! f = @(t, y, c) fcn_scaled_hessian (t, y, c);
+%! for s = all3
+%!   o = struct ("TimeStepSize", 0.01);
+%!   ref = s{1} (f, [0 2], [1 0.5], o, 1);
+%!   for c = [1e3 1e12 1e14]
+%!     lastwarn ("");
+%!     sol = s{1} (@fcn_scaled_hessian, [0 2], [1 0.5], o, c);
+%!     assert (lastwarn (), "");
+%!     assert (sol.y, ref.y, 1e-12);
+%!     tok = regexp (sol.stats.jacobian_source, '^second output of FCN \(Hessian\), then finite differences of FCN from t = (\S+)$', "tokens");
+%!     assert (numel (tok), 1);
+%!     assert (str2double (tok{1}{1}) < 0.01);
+%!   endfor
+%!   ## the right one, and one 10 times too large (Newton slower), stay
+%!   for c = [1 10]
+%!     sol = s{1} (@fcn_scaled_hessian, [0 2], [1 0.5], o, c);
+%!     assert (sol.y, ref.y, 1e-12);
+%!     assert (sol.stats.jacobian_source, "second output of FCN (Hessian)");
+%!   endfor
+%! endfor
 
 ## MaxSteps
 %!test

@@ -461,6 +461,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
   for (int i = 0; i < n; i++)
     ytyp[i] = fabs (y[i]);
   sys->ytyp = ytyp;
+  sys->jac_probed = 0;
 
   double t = o->t0;
   int result = SYM_DONE;

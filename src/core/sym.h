@@ -81,6 +81,7 @@ typedef struct {
   long nrhs;        /* calls of rhs (a batch call counts once) */
   long nrhs_states; /* states evaluated (a batch call of k counts k) */
   long nfd;         /* rhs calls spent on finite-difference Jacobians
+                       and on the probe of the user's Df
                        (included in nrhs) */
   long njac;        /* calls of jac */
   long nnewton;     /* Newton iterations */
@@ -102,8 +103,11 @@ typedef struct {
   int fail_status;            /* its status */
   int fail_df;                /* SYM_NONFINITE in jac's or rhs_jac's Df
                                  (f finite) */
-  int jac_dropped;            /* jac/rhs_jac dropped by sym_jac_check */
+  int jac_dropped;            /* jac/rhs_jac dropped by sym_jac_check or
+                                 by the probe of the first Df */
   double jac_dropped_t;       /* at this t */
+  int jac_probed;             /* the user's Df was probed (SYM_JAC_GROSS);
+                                 sym_integrate clears it for its run */
   /* NULL, or the n typical sizes of y's components that set the steps of
      the finite differences (see sym_jac): sym_integrate points it, for its
      run, at the largest |y_i| of y0 and the accepted steps, and sets it
@@ -153,6 +157,23 @@ int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
    sym_integrate checks no more after SYM_JAC_CHECKS checks that agreed. */
 #define SYM_JAC_AGREE 0.1
 #define SYM_JAC_CHECKS 3
+/* The first Df the user's jac or rhs_jac gives (sym_jac, sym_rhs_jac;
+   then jac_probed is set) is probed at its (t, y): the change of f over a
+   step dy along one direction (every component stepped by sqrt(eps)
+   times its size, as the finite differences step it) against Df dy.
+   When they differ by more than SYM_JAC_GROSS times the change of f
+   (plus SYM_JAC_NOISE ulps of f, its round-off), Df is dropped as by
+   sym_jac_check, and finite differences of rhs serve from there on,
+   starting with this Df.  Only a Df far too large fails it: one too small
+   (zero), of the wrong sign or missing a forcing term's dF/dy differs by
+   about the change itself, slows Newton, and sym_jac_check judges it
+   after a failure.  A Df too large by c makes the corrections 1/c of
+   Newton's, and from c ~ 1e11 (Kepler, odeSPVI (4,3), h = 2 pi/100) they
+   are below round-off from the first on: the solve stops there, accepted
+   as converged, unchanged from its start (tests/c/test_core.c).  Costs 2
+   calls of rhs per run (1 with rhs_jac), counted in nfd. */
+#define SYM_JAC_GROSS 100.0
+#define SYM_JAC_NOISE 1e3
 /* After a Newton failure with the user's Df (jac or rhs_jac): compare it
    at (t, y) with forward differences of rhs.  If they differ by more than
    SYM_JAC_AGREE times the largest entry of either (a Hessian that misses

@@ -293,6 +293,73 @@ jac_fd (sym_system *sys, double t, const double *y, const double *f0,
   return st;
 }
 
+/* The first Df a run gets from the user's jac or rhs_jac (sym.h,
+   SYM_JAC_GROSS), df at (t, y), with f0 = f(t, y) or NULL: compared along
+   one direction with a forward difference of rhs, and dropped for finite
+   differences (into df) when it is grossly too large.  A failed call of rhs returns its status,
+   as in the finite differences, and leaves the probe to be made again. */
+static int
+jac_probe (sym_system *sys, double t, const double *y, const double *f0,
+           double *df)
+{
+  const int n = 2 * sys->dim;
+  sys->jac_probed = 1;
+  double *w = sym_malloc (4 * (size_t) n * sizeof (double));
+  if (! w)
+    return SYM_ENOMEM;
+  double *fb = w, *yp = w + n, *fp = w + 2 * n, *size = w + 3 * n;
+  long before = sys->cnt.nrhs;
+  int st = SYM_SUCCESS;
+  if (! f0)
+    {
+      st = sym_rhs (sys, t, y, fb);
+      f0 = fb;
+    }
+  /* a direction with every component of its own size (as the finite
+     differences step them) and varied weights and signs, so that no
+     structure of Df hides a wrong part of it */
+  fd_sizes (sys, y, size);
+  const double sq = sqrt (DBL_EPSILON);
+  for (int i = 0; i < n; i++)
+    {
+      double wt = (i & 1 ? -1.0 : 1.0) * (0.5 + 0.05 * ((i * 37) % 11));
+      volatile double yi = y[i] + sq * size[i] * wt;   /* exact step */
+      yp[i] = yi;
+    }
+  if (! st)
+    st = sym_rhs (sys, t, yp, fp);
+  sys->cnt.nfd += sys->cnt.nrhs - before;
+  if (st)
+    {
+      sys->jac_probed = 0;
+      sym_free (w);
+      return st;
+    }
+  double dif = 0.0, ref = 0.0, fbig = 0.0;
+  for (int i = 0; i < n; i++)
+    {
+      double pred = 0.0;
+      for (int j = 0; j < n; j++)
+        pred += df[i + (size_t) j * n] * (yp[j] - y[j]);
+      double del = fp[i] - f0[i];
+      dif = fmax (dif, fabs (del - pred));
+      ref = fmax (ref, fabs (del));
+      fbig = fmax (fbig, fmax (fabs (f0[i]), fabs (fp[i])));
+    }
+  /* the difference's own round-off: f's rounding, a few ulps of f */
+  ref += SYM_JAC_NOISE * DBL_EPSILON * fbig;
+  if (dif > SYM_JAC_GROSS * ref)
+    {
+      sys->jac = NULL;
+      sys->rhs_jac = NULL;
+      sys->jac_dropped = 1;
+      sys->jac_dropped_t = t;
+      st = jac_fd (sys, t, y, f0, df);
+    }
+  sym_free (w);
+  return st;
+}
+
 int
 sym_jac (sym_system *sys, double t, const double *y, const double *f0,
          double *df)
@@ -304,8 +371,9 @@ sym_jac (sym_system *sys, double t, const double *y, const double *f0,
   int st = callback_status (sys, t, sys->jac (t, y, df, sys->user));
   if (st)
     return st;
-  return all_finite ((size_t) n * (size_t) n, df) ? SYM_SUCCESS
-         : nonfinite_df_at (sys, t);
+  if (! all_finite ((size_t) n * (size_t) n, df))
+    return nonfinite_df_at (sys, t);
+  return sys->jac_probed ? SYM_SUCCESS : jac_probe (sys, t, y, f0, df);
 }
 
 int
@@ -324,8 +392,9 @@ sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
     return st;
   if (! all_finite (n, dy))
     return nonfinite_at (sys, t);
-  return all_finite ((size_t) n * (size_t) n, df) ? SYM_SUCCESS
-         : nonfinite_df_at (sys, t);
+  if (! all_finite ((size_t) n * (size_t) n, df))
+    return nonfinite_df_at (sys, t);
+  return sys->jac_probed ? SYM_SUCCESS : jac_probe (sys, t, y, dy, df);
 }
 
 int

@@ -47,6 +47,24 @@ nonsep_jac (double t, const double *y, double *df, void *u)
   return 0;
 }
 
+/* nonsep's Df times *u (a user's Df too large, of the wrong sign, zero),
+   and f with it in one call */
+static int
+nonsep_jac_c (double t, const double *y, double *df, void *u)
+{
+  nonsep_jac (t, y, df, u);
+  for (int i = 0; i < 4; i++)
+    df[i] *= *(const double *) u;
+  return 0;
+}
+
+static int
+nonsep_both_c (double t, const double *y, double *dy, double *df, void *u)
+{
+  int st = nonsep (t, y, dy, u);
+  return st ? st : nonsep_jac_c (t, y, df, u);
+}
+
 /* The same H at the scale a: H = p^2/2 (1 + (q/a)^2) + q^2/2, whose
    solutions are a times those of a = 1 (u points at a) */
 static int
@@ -438,6 +456,69 @@ main (void)
   CHECK (st == SYM_NEWTON_FAIL, "failure reported: %s", sym_status_name (st));
   CHECK (cnt.nnewton_fail >= 1, "failure counted");
   sym_newton_free (&nw);
+
+  /* The probe of the user's first Df (SYM_JAC_GROSS): a Df too large by
+     1e3 or 1e12 is dropped and finite differences give this Df already;
+     the right one, one of the wrong sign, or zero stays.  It costs 2 calls
+     of f with jac (f and f along a direction), 1 with rhs_jac (which gave
+     f), and is made once. */
+  {
+    double yp[2] = { 0.3, -0.7 }, dfp[4], dfx[4], fx[2];
+    const double scales[] = { 1.0, -1.0, 0.0, 10.0, 1e3, 1e12 };
+    nonsep_jac (0, yp, dfx, NULL);
+    for (int k = 0; k < 6; k++)
+      for (int both = 0; both < 2; both++)
+        {
+          double c = scales[k];
+          sym_system sj;
+          memset (&sj, 0, sizeof sj);
+          sj.dim = 1;
+          sj.rhs = nonsep;
+          sj.jac = nonsep_jac_c;
+          if (both)
+            sj.rhs_jac = nonsep_both_c;
+          sj.user = &c;
+          int stp = both ? sym_rhs_jac (&sj, 0.25, yp, fx, dfp)
+                         : sym_jac (&sj, 0.25, yp, NULL, dfp);
+          int drop = c > 100.0;
+          double e = 0.0;
+          for (int i = 0; i < 4; i++)
+            e = fmax (e, fabs (dfp[i] - (drop ? 1.0 : c) * dfx[i]));
+          CHECK (stp == 0 && sj.jac_probed && sj.jac_dropped == drop
+                 && (drop ? sj.jac == NULL && sj.rhs_jac == NULL
+                            && sj.jac_dropped_t == 0.25
+                            && sj.cnt.nfd == 2 - both + 2 && e < 1e-7
+                          : sj.jac == nonsep_jac_c && e == 0.0
+                            && sj.cnt.nfd == 2 - both)
+                 && sj.cnt.nrhs == sj.cnt.nfd && sj.cnt.njac == 1,
+                 "probe of Df times %g (%s): dropped %d, %ld calls of f, "
+                 "Df off by %.3g", c, both ? "rhs_jac" : "jac",
+                 sj.jac_dropped, sj.cnt.nrhs, e);
+          /* made once: the next Df costs no call of f */
+          long calls = sj.cnt.nrhs;
+          stp = both ? sym_rhs_jac (&sj, 0.5, yp, fx, dfp)
+                     : sym_jac (&sj, 0.5, yp, NULL, dfp);
+          CHECK (stp == 0 && (drop || sj.cnt.nrhs == calls),
+                 "second Df: %ld calls of f", sj.cnt.nrhs - calls);
+        }
+    /* a failed call of f in the probe is reported, and the probe made
+       again with the next Df */
+    double c = 1e12;
+    sym_system sj;
+    memset (&sj, 0, sizeof sj);
+    sj.dim = 1;
+    sj.rhs = nonsep;
+    sj.jac = nonsep_jac_c;
+    sj.user = &c;
+    bad_mode = 1;
+    int stp = sym_jac (&sj, 0.25, yp, NULL, dfp);
+    CHECK (stp == SYM_NONFINITE && ! sj.jac_probed && sj.jac != NULL,
+           "NaN in the probe: status %d", stp);
+    bad_mode = 0;
+    stp = sym_jac (&sj, 0.25, yp, NULL, dfp);
+    CHECK (stp == 0 && sj.jac_probed && sj.jac_dropped, "probe again: %d",
+           stp);
+  }
 
   CHECK (nalloc == 0, "every allocation freed through the hook (%ld left)",
          nalloc);

@@ -382,6 +382,17 @@ test_symplectic (void)
 }
 
 /* ------------------------------------------------------- Jacobian sources */
+/* Kepler's Df times kep_scale: a user's Df far too large */
+static double kep_scale;
+static int
+kep_jac_scaled (double t, const double *y, double *df, void *user)
+{
+  int st = ts_kep_jac (t, y, df, user);
+  for (int i = 0; i < 16; i++)
+    df[i] *= kep_scale;
+  return st;
+}
+
 static void
 test_jacobian_sources (void)
 {
@@ -404,8 +415,47 @@ test_jacobian_sources (void)
   double dif = ts_maxdiff (4, ya, yf);
   CHECK (st1 == 0 && st2 == 0 && dif <= 1e-10,
          "analytic vs finite-difference Jacobian: %.3g", dif);
-  CHECK (sa.cnt.nfd == 0 && sf.cnt.nfd > 0 && sf.cnt.njac == 0,
+  /* the analytic Df's only differences: its probe (f and one state) */
+  CHECK (sa.cnt.nfd == 2 && sf.cnt.nfd > 0 && sf.cnt.njac == 0,
          "counters: nfd %ld / %ld", sa.cnt.nfd, sf.cnt.nfd);
+  /* A Df too large by c makes Newton's corrections 1/c of what they
+     should be: from c ~ 1e11 they are below round-off from the first on,
+     and each solve stops at once, accepted, at its start.  Without the
+     probe of the first Df (jac_probed set by hand) one period with c =
+     1e12 ends far from the orbit (measured: 25 away); with it, Df is
+     dropped in the first step (at its first node) and finite differences
+     give the steps of the right Df. */
+  {
+    double yk[4], yu[4];
+    kep_scale = 1e12;
+    for (int probe = 0; probe < 2; probe++)
+      {
+        double *yy = probe ? yk : yu;
+        ts_kep_y0 (0.6, yy);
+        sym_system sk = ts_system (2, ts_kep, kep_jac_scaled, NULL);
+        sk.jac_probed = ! probe;
+        void *sp = T->alloc (&sk, &o, &st);
+        int stk = ts_run_fixed (T, sp, &sk, 0.0, h, 100, yy);
+        T->free (sp);
+        CHECK (stk == 0 && sk.jac_dropped == probe
+               && (! probe || (sk.jac_dropped_t >= 0.0
+                               && sk.jac_dropped_t < h && sk.jac == NULL)),
+               "Df times 1e12, probe %d: status %d, dropped %d at t = %g",
+               probe, stk, sk.jac_dropped, sk.jac_dropped_t);
+      }
+    double yr[4];
+    ts_kep_y0 (0.6, yr);
+    sym_system sr = ts_system (2, ts_kep, ts_kep_jac, NULL);
+    void *sp = T->alloc (&sr, &o, &st);
+    ts_run_fixed (T, sp, &sr, 0.0, h, 100, yr);
+    T->free (sp);
+    printf ("Kepler (4,3), one period with Df times 1e12: %.3g from the "
+            "steps of the right Df (%.3g without the probe)\n",
+            ts_maxdiff (4, yk, yr), ts_maxdiff (4, yu, yr));
+    CHECK (ts_maxdiff (4, yk, yr) <= 1e-10 && ts_maxdiff (4, yu, yr) > 1.0,
+           "Df times 1e12: %.3g with the probe, %.3g without",
+           ts_maxdiff (4, yk, yr), ts_maxdiff (4, yu, yr));
+  }
   printf ("Kepler (4,3), 10 periods: analytic vs FD Jacobian differ by "
           "%.2e; calls/step: analytic %.2f rhs + %.3f jac, FD %.2f rhs "
           "(%.2f of them FD)\n", dif, sa.cnt.nrhs / 1000.0,
@@ -518,8 +568,10 @@ test_rhs_jac (void)
   CHECK (st1 == 0 && st2 == 0 && ts_maxdiff (4, ya, yc) == 0.0,
          "combined f and Df: statuses %d %d, differ by %.3g", st1, st2,
          ts_maxdiff (4, ya, yc));
+  /* the probe of Df costs 1 call with f in the combined call, else 2 */
   CHECK (sc.cnt.njac == sa.cnt.njac && both_calls == sc.cnt.njac
-         && sa.cnt.njac > 0 && sc.cnt.nrhs == sa.cnt.nrhs - sa.cnt.njac,
+         && sa.cnt.njac > 0 && sc.cnt.nfd == 1 && sa.cnt.nfd == 2
+         && sc.cnt.nrhs == sa.cnt.nrhs - sa.cnt.njac - 1,
          "combined: %ld rhs + %ld jac (%ld calls), separate %ld rhs + %ld "
          "jac", sc.cnt.nrhs, sc.cnt.njac, both_calls, sa.cnt.nrhs,
          sa.cnt.njac);
@@ -535,7 +587,8 @@ test_rhs_jac (void)
          "new matrix every step: status %d, differs by %.3g", st1,
          ts_maxdiff (4, ya, yn));
   CHECK (both_calls == snew.cnt.njac && snew.cnt.njac == 3000
-         && snew.cnt.nrhs <= 1800 && snew.cnt.nrhs % 3 == 1,
+         && snew.cnt.nrhs <= 1800 && snew.cnt.nfd == 1
+         && (snew.cnt.nrhs - snew.cnt.nfd) % 3 == 1,
          "new matrix every step: %ld rhs + %ld jac (%ld calls)",
          snew.cnt.nrhs, snew.cnt.njac, both_calls);
   printf ("  a new matrix every step: %.3f rhs + %.3f jac calls per step\n",
