@@ -420,7 +420,11 @@ test_failures (void)
           seen[0][1], seen[1][0], seen[1][1], seen[2][0], seen[2][1]);
 }
 
-/* Newton cannot converge: a recoverable failure, and the stepper goes on */
+/* Newton cannot converge: a recoverable failure, and the stepper goes on.
+   Here the implicit kick has no solution at all: on P_H1, f_p = -(p^2 q +
+   q), so P = p_k + c f_p(q_k, P) at q_k = 2.5, p_k = 3 is 2.5 c P^2 + P +
+   2.5 c - 3 = 0, real roots only for 25 c^2 - 30 c - 1 <= 0, c <= 1.23;
+   h = 5 asks for c = 5 (SE) or 2.5 (SV). */
 static void
 test_newton_fail (void)
 {
