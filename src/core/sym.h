@@ -168,10 +168,13 @@ int sym_rhs_jac (sym_system *sys, double t, const double *y, double *dy,
    (zero), of the wrong sign or missing a forcing term's dF/dy differs by
    about the change itself, slows Newton, and sym_jac_check judges it
    after a failure.  A Df too large by c makes the corrections 1/c of
-   Newton's, and from c ~ 1e11 (Kepler, odeSPVI (4,3), h = 2 pi/100) they
-   are below round-off from the first on: the solve stops there, accepted
-   as converged, unchanged from its start (tests/c/test_core.c).  Costs 2
-   calls of rhs per run (1 with rhs_jac), counted in nfd. */
+   Newton's: on Kepler, odeSPVI (4,3), h = 2 pi/100, c = 1e9 still made
+   Newton fail (and sym_jac_check dropped Df), but with c = 1e12 they are
+   below round-off from the first on, so each solve stops at once,
+   accepted as converged at its start, and one period ends 25 away from
+   the orbit without this probe (tests/c/test_spvi.c; the probe itself in
+   tests/c/test_core.c).  Costs 2 calls of rhs per run (1 with rhs_jac),
+   counted in nfd. */
 #define SYM_JAC_GROSS 100.0
 #define SYM_JAC_NOISE 1e3
 /* After a Newton failure with the user's Df (jac or rhs_jac): compare it
