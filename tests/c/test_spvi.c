@@ -419,7 +419,7 @@ test_jacobian_sources (void)
   CHECK (sa.cnt.nfd == 2 && sf.cnt.nfd > 0 && sf.cnt.njac == 0,
          "counters: nfd %ld / %ld", sa.cnt.nfd, sf.cnt.nfd);
   /* A Df too large by c makes Newton's corrections 1/c of what they
-     should be: from c ~ 1e11 they are below round-off from the first on,
+     should be: with c = 1e12 they are below round-off from the first on,
      and each solve stops at once, accepted, at its start.  Without the
      probe of the first Df (jac_probed set by hand) one period with c =
      1e12 ends far from the orbit (measured: 25 away); with it, Df is
