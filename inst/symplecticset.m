@@ -26,7 +26,9 @@
 ## is shortened to end exactly on the final time.
 ## @item TimeStepNumber
 ## With @code{TimeStepSize}: take exactly this many steps from t0 (the end
-## of @var{tspan} then only gives the direction).  Alone: that many equal
+## of @var{tspan} then only gives the direction; where t0 + N*h rounds to
+## within 16 ulps of a time of @var{tspan}, as 3*0.7 does of 2.1, the last
+## step ends on that time and its row is output).  Alone: that many equal
 ## steps over @var{tspan}.
 ## @item Q_DoFs
 ## @code{odeSPVI}: number of Legendre modes of q on each step (polynomial

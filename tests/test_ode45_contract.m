@@ -944,6 +944,31 @@
 %!   assert (t, [0; 0.05]);
 %! endfor
 
+%!test
+%! ## N steps of h end on the output time N*h stands for even when t0 + N*h
+%! ## rounds short of it (3*0.7 = 2.0999999999999996): the same rows and
+%! ## values as TimeStepSize alone, and no warning (forward, backward, and
+%! ## towards tf = 0)
+%! for s = {@odeSE, @odeSV, @odeSPVI}
+%!   on = symplecticset ("TimeStepNumber", 3, "TimeStepSize", 0.7);
+%!   oh = symplecticset ("TimeStepSize", 0.7);
+%!   for ts = {[0 1 2.1], [0 -1 -2.1], [-2.1 -1 0], [0 2.1], [5 5+2.1]}
+%!     lastwarn ("");
+%!     [t, y] = s{1} (@contract_osc, ts{1}, [1; 0], on);
+%!     assert (lastwarn (), "");
+%!     [th, yh] = s{1} (@contract_osc, ts{1}, [1; 0], oh);
+%!     assert (t, th);
+%!     assert (y, yh);
+%!     assert (t(end), ts{1}(end));
+%!   endfor
+%!   ## a real shortfall, however small, warns
+%!   lastwarn ("");
+%!   [t, y] = s{1} (@contract_osc, [0 1 2.1+1e-13], [1; 0], on);
+%!   [~, id] = lastwarn ();
+%!   assert (id, "symplectic:tspan-beyond-end");
+%!   assert (t, [0; 1]);
+%! endfor
+
 %!function stop = outsel_rec (t, y, flag)
 %!  global OUTSEL_Y
 %!  if (isempty (flag) || strcmp (flag, "init"))

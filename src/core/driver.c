@@ -365,6 +365,28 @@ hmin_at (double t)
   return fmax (16 * DBL_EPSILON * fabs (t), DBL_MIN);
 }
 
+double
+sym_fixed_end (const sym_driver_opts *o)
+{
+  if (! (o->nsteps_fixed > 0 && o->h_fixed > 0))
+    return o->tf;
+  const double dir = o->tf >= o->t0 ? 1.0 : -1.0;
+  const double len = o->h_fixed * (double) o->nsteps_fixed;
+  const double tend = o->t0 + dir * len;
+  /* t0 + N h is rounded three times (h, N h, the sum) and the time it
+     stands for once more (e.g. 3 * 0.7 = 2.0999999999999996, not 2.1):
+     within 16 ulps of max(|t0|, N h) it is that output time */
+  const double tol = 16 * DBL_EPSILON * fmax (fabs (o->t0), len);
+  double best = fabs (o->tf - tend), snap = o->tf;
+  for (int i = 1; o->ntout > 2 && o->tout && i < o->ntout; i++)
+    if (fabs (o->tout[i] - tend) < best)
+      {
+        best = fabs (o->tout[i] - tend);
+        snap = o->tout[i];
+      }
+  return best <= tol ? snap : tend;
+}
+
 /* Map a recoverable cause that can no longer be cured to a fatal status.
    small_step: the step that failed was the least one (adaptive runs); a
    callback's request for a smaller step is otherwise (fixed steps, the
@@ -495,9 +517,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
         {
           nfixed = o->nsteps_fixed;
           hfix = o->h_fixed > 0 ? o->h_fixed : fabs (o->tf - o->t0) / nfixed;
-          tend = o->t0 + r.dir * hfix * nfixed;
-          if (o->h_fixed <= 0)
-            tend = o->tf;
+          tend = sym_fixed_end (o);
         }
       else
         {

@@ -367,6 +367,13 @@ typedef struct {
   void *output_user;
 } sym_driver_opts;
 
+/* Where a run of TimeStepNumber steps of TimeStepSize ends (h_fixed > 0,
+   nsteps_fixed > 0): t0 + N h in the direction of tf, or the output time
+   (tf or one of tout) that it is within round-off of (16 ulps of
+   max(|t0|, N h)), so that N steps of h still end on the time N h stands
+   for; otherwise tf. */
+double sym_fixed_end (const sym_driver_opts *o);
+
 /* Integrate from y0.  Returns SYM_DONE, SYM_STOP_OUTPUT, SYM_STOP_EVENT or a
    status < 0 (rows handed to the output sink so far stay valid).
    *t_reached is the last time reached. */

@@ -926,15 +926,6 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   int ntout = want_sol ? 2 : ntspan;
   double tf = tspan[ntspan - 1];
 
-  if (o.nsteps_fixed > 0 && o.h_fixed > 0 && ntout > 2)
-    {
-      double tend = tspan[0] + dir * o.h_fixed * o.nsteps_fixed;
-      if (dir * (tf - tend) > 1e-12 * fabs (tf))
-        mexWarnMsgIdAndTxt ("symplectic:tspan-beyond-end", "%s: "
-                            "TimeStepNumber*TimeStepSize ends at t = %g; "
-                            "no output for TSPAN beyond that", name, tend);
-    }
-
   /* OutputFcn: nargout = 0 and no OutputFcn plots with odeplot, as ode45 */
   mxArray *odeplot = NULL;
   if (nlhs == 0 && ! o.outputfcn)
@@ -1001,6 +992,15 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
   dopt.event_out = sink_event;
   dopt.output = sink_row;
   dopt.output_user = c;
+
+  if (ntout > 2)
+    {
+      double tend = sym_fixed_end (&dopt);
+      if (dir * (tf - tend) > 0)
+        mexWarnMsgIdAndTxt ("symplectic:tspan-beyond-end", "%s: "
+                            "TimeStepNumber*TimeStepSize ends at t = %g; "
+                            "no output for TSPAN beyond that", name, tend);
+    }
 
   double treached = tspan[0];
   int status = sym_integrate (solver->type, &sys, &mo, &dopt, y0, &treached);

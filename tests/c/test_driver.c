@@ -402,6 +402,35 @@ main (void)
   st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
   CHECK (S.nrows == 8 && S.t[7] == 1.75, "rows %d, t %.17g", S.nrows,
          S.t[7]);
+  /* N h = 3 * 0.7 rounds to 2.0999999999999996: the run ends on the
+     time it stands for, tf or an output time, and emits its row there;
+     a real shortfall is kept */
+  setup (&sys, &hu, &o, &atol);
+  o.h_fixed = 0.7;
+  o.nsteps_fixed = 3;
+  o.tf = 2.1;
+  CHECK (3 * 0.7 != 2.1 && sym_fixed_end (&o) == 2.1, "end %.17g",
+         sym_fixed_end (&o));
+  double touts[3] = { 0, 1, 2.1 };
+  o.tf = 5;
+  o.tout = touts;
+  o.ntout = 3;
+  CHECK (sym_fixed_end (&o) == 2.1, "end at an output time");
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (st == SYM_DONE && S.nrows == 3 && S.t[2] == 2.1 && tr == 2.1,
+         "rows %d, t reached %.17g", S.nrows, tr);
+  touts[2] = 2.1 + 1e-13;
+  CHECK (sym_fixed_end (&o) == 3 * 0.7, "a real shortfall: %.17g",
+         sym_fixed_end (&o));
+  o.t0 = 0;
+  o.tf = -2.1;
+  o.ntout = 2;
+  CHECK (sym_fixed_end (&o) == -2.1, "backward");
+  o.tf = -3;
+  CHECK (sym_fixed_end (&o) == -3 * 0.7, "backward, tf beyond");
+  o.nsteps_fixed = 0;
+  CHECK (sym_fixed_end (&o) == -3, "no TimeStepNumber: tf");
+
   /* TimeStepNumber alone: N equal steps over tspan */
   setup (&sys, &hu, &o, &atol);
   o.nsteps_fixed = 40;
