@@ -243,8 +243,10 @@
 ## @end table
 ##
 ## A run that cannot go on (Newton fails with the fixed step or at the
-## smallest adaptive step, or @var{fcn} keeps returning NaN) warns and
-## returns every row computed so far.  The warnings' identifiers are
+## smallest adaptive step, @var{fcn} keeps returning NaN, or a step's
+## result overflows, as an unstable fixed step's does in the end: that
+## step is refused) warns and returns every row computed so far, all
+## finite.  The warnings' identifiers are
 ## @code{symplectic:newton-failed}, @code{symplectic:nonfinite},
 ## @code{symplectic:step-size}, @code{symplectic:max-steps},
 ## and @code{symplectic:output-stop} (and those of @code{help odeSE}); an

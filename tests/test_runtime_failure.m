@@ -58,6 +58,31 @@
 %!   endfor
 %! endfor
 
+## an unstable fixed step (h = 3 > 2 on the oscillator) grows the
+## solution until a step overflows: the run ends before that step with a
+## warning that says so, and every returned row is finite, whatever the
+## output options (the Inf row was returned with step output, dropped
+## with Refine, and FCN was blamed)
+%!test
+%! for s = {@odeSE, @odeSV}
+%!   name = func2str (s{1});
+%!   [t0, y0] = s{1} (osc, [0 1104], [1 0], struct ("TimeStepSize", 3));
+%!   for o = {struct("TimeStepSize", 3), ...
+%!            struct("TimeStepSize", 3, "Separable", "on"), ...
+%!            struct("TimeStepSize", 3, "Refine", 4)}
+%!     [t, y, msg, id] = run_warn (s{1}, osc, [0 1200], [1 0], o{1});
+%!     assert (id, "symplectic:nonfinite");
+%!     assert (regexp (msg, ['^' name ': the solution overflowed \(NaN or Inf\) in the step from t = 1104 ']));
+%!     assert (t(end), 1104);
+%!     assert (all (isfinite (y(:))));
+%!     assert (y(end,:), y0(end,:), -1e-12);
+%!     assert (max (abs (y(end,:))) > 1e307);
+%!   endfor
+%!   sol = s{1} (osc, [0 1200], [1 0], struct ("TimeStepSize", 3));
+%!   assert (sol.x(end), 1104);
+%!   assert (all (isfinite (sol.y(:))));
+%! endfor
+
 ## the same with output at given times and with the sol struct
 %!test
 %! for s = all3

@@ -659,26 +659,37 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           result = st;
           goto done;
         }
+      /* A result beyond the doubles (f was finite wherever the step took
+         it, but h f or the sum overflowed: an unstable fixed step grows
+         the solution until it does) is not accepted: a fixed step ends the
+         run before it, an adaptive one is retried shorter. */
+      int overflow = 0;
+      for (int i = 0; st == 0 && i < n; i++)
+        if (! isfinite (ynew[i]))
+          overflow = 1;
       double err = 0;
-      if (st == 0 && ! fixed)
+      if (st == 0 && ! overflow && ! fixed)
         err = sym_error_norm (n, yerr, y, ynew, o->rtol, o->atol,
                               o->atol_len, o->norm_control);
-      if (st > 0 || (! fixed && ! (err <= 1.0)))
+      if (st > 0 || overflow || (! fixed && ! (err <= 1.0)))
         {
           sys->cnt.nfailed++;
           if (fixed)
             {
-              result = fatal_from (st > 0 ? st : SYM_NONFINITE, 0);
+              result = overflow ? SYM_EOVERFLOW
+                       : fatal_from (st > 0 ? st : SYM_NONFINITE, 0);
               goto done;
             }
-          double fac = st > 0 ? 0.5 : sym_step_factor (err, q, 0.2, 1.0);
+          double fac = st > 0 || overflow ? 0.5
+                       : sym_step_factor (err, q, 0.2, 1.0);
           if (st == 0 && last_rejected)
             fac = fmin (fac, 0.5);
           last_rejected = 1;
           /* failed at the least step: nothing smaller can be tried */
           if (h <= hmin_at (t))
             {
-              result = st > 0 ? fatal_from (st, 1) : SYM_ESTEPSIZE;
+              result = st > 0 ? fatal_from (st, 1)
+                       : overflow ? SYM_EOVERFLOW : SYM_ESTEPSIZE;
               goto done;
             }
           h *= fac;

@@ -295,7 +295,9 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
     }
   if ((st = sym_recs_finish (&s->o.r, sys, s->want_f, yerr, ynext)))
     return st;
-  if (yerr && (st = sv_trap_error (s, sys, cont, yerr)))
+  /* (not after a result that overflowed: sym_recs_finish left it
+     unevaluated and the trial unfinished) */
+  if (yerr && s->o.r.trial_ok && (st = sv_trap_error (s, sys, cont, yerr)))
     s->o.r.trial_ok = 0;
   return st;
 }

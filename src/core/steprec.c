@@ -116,6 +116,16 @@ sym_recs_finish (sym_recs *r, sym_system *sys, int want_f, double *yerr,
   const int n = r->n;
   sym_rec *tr = r->trial;
   int st;
+  /* a result that overflowed is not evaluated (f there would be called
+     with Inf): the driver refuses such a step */
+  for (int i = 0; i < n; i++)
+    if (! isfinite (tr->y1[i]))
+      {
+        memcpy (ynext, tr->y1, (size_t) n * sizeof (double));
+        for (int k = 0; yerr && k < n; k++)
+          yerr[k] = NAN;
+        return SYM_SUCCESS;
+      }
   if (want_f || yerr)
     {
       if ((st = sym_recs_f0 (r, sys)))

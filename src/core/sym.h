@@ -40,7 +40,9 @@ enum {
   SYM_ENEWTON = -5,        /* Newton failed and the step cannot shrink */
   SYM_ENONFINITE = -6,     /* non-finite values that a smaller step cannot cure */
   SYM_EMAXSTEPS = -7,      /* more steps than allowed */
-  SYM_EOUTPUT = -8         /* the output sink reported an error */
+  SYM_EOUTPUT = -8,        /* the output sink reported an error */
+  SYM_EOVERFLOW = -9       /* a step's result overflowed (NaN or Inf in y,
+                              f finite), with the fixed or the least step */
 };
 
 /* Ways a run ends well (returned by sym_integrate) */

@@ -1061,6 +1061,16 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                           name, c->nonfinite_what ? c->nonfinite_what
                           : "FCN", sys.fail_t, tlast);
       break;
+    case SYM_EOVERFLOW:
+      mexWarnMsgIdAndTxt ("symplectic:nonfinite", "%s: the solution "
+                          "overflowed (NaN or Inf) in the step from "
+                          "t = %.17g%s; returning the solution up to "
+                          "t = %.17g", name, treached,
+                          (o.h_fixed > 0 || o.nsteps_fixed > 0)
+                          ? " (an unstable fixed step? try a smaller "
+                            "TimeStepSize)" : " even with the smallest step",
+                          tlast);
+      break;
     case SYM_ESTEPSIZE:
       mexWarnMsgIdAndTxt ("symplectic:step-size", "%s: the step size became "
                           "too small at t = %.17g; returning the solution up "

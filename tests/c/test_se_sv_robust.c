@@ -733,6 +733,66 @@ test_jac_check (void)
     }
 }
 
+/* f that records whether it was ever called at a non-finite state */
+static int rhs_saw_inf;
+static int
+rhs_watch (double t, const double *y, double *dy, void *user)
+{
+  for (int i = 0; i < 2; i++)
+    if (! isfinite (y[i]))
+      rhs_saw_inf = 1;
+  return tp_rhs (t, y, dy, user);
+}
+
+/* rows handed out: all finite? the last t */
+typedef struct { long rows; int finite; double t; } rows_seen;
+static int
+rows_watch (double t, const double *y, void *user)
+{
+  rows_seen *r = user;
+  r->rows++;
+  r->finite = r->finite && isfinite (y[0]) && isfinite (y[1]);
+  r->t = t;
+  return 0;
+}
+
+/* An unstable fixed step (the oscillator, h = 3 > 2) grows the solution
+   until a step's result overflows: that step is refused, the run ends
+   with SYM_EOVERFLOW at the step before it (t = 1104), every row handed
+   out is finite and f is never called with Inf; with and without the
+   dense output and the error estimate's f at the step's end, and on the
+   separable path */
+static void
+test_overflow (void)
+{
+  for (int sv = 0; sv < 2; sv++)
+    for (int sep = 0; sep < 2; sep++)
+      for (int dense = 0; dense < 2; dense++)
+        {
+          tprob P;
+          sym_system sys = tp_system (&P, P_HO, 1);
+          sys.rhs = rhs_watch;
+          rhs_saw_inf = 0;
+          sym_method_opts mo = tp_opts (sep, 0, dense);
+          sym_driver_opts o;
+          memset (&o, 0, sizeof o);
+          o.t0 = 0.0;
+          o.tf = 1200.0;
+          o.h_fixed = 3.0;
+          o.refine = dense ? 4 : 1;
+          rows_seen r = { 0, 1, NAN };
+          o.output = rows_watch;
+          o.output_user = &r;
+          double y0[2] = { 1.0, 0.0 }, tr = 0.0;
+          int st = sym_integrate (stepper (sv), &sys, &mo, &o, y0, &tr);
+          CHECK (st == SYM_EOVERFLOW && tr == 1104.0 && r.t == 1104.0
+                 && r.finite && ! rhs_saw_inf, "%s, separable %d, dense "
+                 "%d: %s at t = %g, last row t = %g, rows finite %d, f at "
+                 "Inf %d", mname (sv), sep, dense, sym_status_name (st),
+                 tr, r.t, r.finite, rhs_saw_inf);
+        }
+}
+
 int
 main (void)
 {
@@ -744,6 +804,7 @@ main (void)
   test_failures ();
   test_newton_fail ();
   test_jac_check ();
+  test_overflow ();
   test_alloc_failure ();
   test_separable_memory ();
   test_bad_input_and_reset ();
