@@ -105,7 +105,8 @@
 ## times each component's size, the largest it has had in the run, and at
 ## least 1e-6 times the largest size among q's components for q's, among
 ## p's for p's: a problem and the same problem scaled take the same
-## steps).  With a forcing term the Hessian misses dF/dy and Newton
+## steps; backward steps, all of them, where @var{fcn} is NaN or Inf at a
+## forward one, as at the edge of its domain).  With a forcing term the Hessian misses dF/dy and Newton
 ## works as a quasi-Newton method; a
 ## Hessian off by a moderate factor (0 to 10, or of the wrong sign) costs
 ## iterations, not accuracy.  When Newton fails with the Jacobian or
@@ -121,7 +122,9 @@
 ## steps as converged.  So the first Jacobian or Hessian given is probed
 ## at its point, at the cost of two calls of @var{fcn} (one when it is
 ## the second output of @var{fcn}): the change of @var{fcn} over a small
-## step along one direction against df/dy times that step.  When they
+## step along one direction (the opposite one where @var{fcn} is NaN or
+## Inf there; no probe if it is both ways) against df/dy times that
+## step.  When they
 ## differ by more than 100 times the change, finite differences serve
 ## from there on (@code{stats.jacobian_source} says from which t); a
 ## matrix too small, of the wrong sign or missing dF/dy is left to the

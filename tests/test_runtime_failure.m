@@ -83,6 +83,24 @@
 %!   assert (all (isfinite (sol.y(:))));
 %! endfor
 
+## a solution within a finite-difference step of the edge of FCN's domain
+## (NaN for q > 1, from q = 1 - 1e-9): the Newton matrix from finite
+## differences, and the probe of a given Hessian or Jacobian, step the
+## other way; these runs ended at t = 0, blaming FCN
+%!test
+%! f = @(t, y) [y(2); -y(1)] + 0 / (y(1) <= 1);
+%! q0 = 1 - 1e-9;
+%! for s = all3
+%!   for o = {struct("TimeStepSize", 0.1), ...
+%!            struct("TimeStepSize", 0.1, "HamiltonianHessFcn", @(t, y) eye (2)), ...
+%!            struct("TimeStepSize", 0.1, "Jacobian", [0 1; -1 0]), struct()}
+%!     [t, y, msg, id] = run_warn (s{1}, f, [0 1], [q0 0], o{1});
+%!     assert (id, "");
+%!     assert (t(end), 1);
+%!     assert (y(:,1), q0 * cos (t), 0.05);
+%!   endfor
+%! endfor
+
 ## the same with output at given times and with the sol struct
 %!test
 %! for s = all3

@@ -233,41 +233,48 @@ jac_fd_many (sym_system *sys, int k, const double *t, const double *y,
       tp[j] = t[j];
     }
   double *size = yv + cols;   /* n: the sizes of one state's components */
-  for (size_t c = 0; c < cols; c++)
-    {
-      const double *yj = y + (c / n) * n;
-      int i = (int) (c % n);
-      if (i == 0)
-        fd_sizes (sys, yj, size);
-      double d = sq * size[i];
-      volatile double yi = yj[i] + d;   /* exact representable step */
-      yv[c] = yi;
-      del[c] = yi - yj[i];
-      tp[nb + c] = t[c / n];
-    }
   int st = SYM_SUCCESS;
-  for (size_t c0 = 0; c0 < cols && ! st; c0 += ncw)
+  /* forward steps; if f is NaN or Inf at a stepped state (a state within
+     a step of the edge of f's domain), all of them once more backwards */
+  for (int pass = 0; pass < 2 && (pass == 0 || st == SYM_NONFINITE);
+       pass++)
     {
-      size_t c1 = c0 + ncw < cols ? c0 + ncw : cols;
-      size_t lead = c0 == 0 ? nb : 0;   /* the states themselves, first */
-      double *ypc = yp + lead * n, *fpc = fp + lead * n;
-      for (size_t c = c0; c < c1; c++)
+      st = SYM_SUCCESS;
+      for (size_t c = 0; c < cols; c++)
         {
-          double *col = ypc + (c - c0) * n;
-          memcpy (col, y + (c / n) * n, (size_t) n * sizeof (double));
-          col[c % n] = yv[c];
+          const double *yj = y + (c / n) * n;
+          int i = (int) (c % n);
+          if (i == 0)
+            fd_sizes (sys, yj, size);
+          double d = (pass ? -sq : sq) * size[i];
+          volatile double yi = yj[i] + d;   /* exact representable step */
+          yv[c] = yi;
+          del[c] = yi - yj[i];
+          tp[nb + c] = t[c / n];
         }
-      st = batch ? sym_rhs_many (sys, (int) (c1 - c0 + lead),
-                                 tp + nb + c0 - lead, yp, fp)
-                 : sym_rhs (sys, tp[nb + c0], yp, fp);
-      if (! st && lead)
-        memcpy (fout, fp, lead * n * sizeof (double));
-      for (size_t c = c0; c < c1 && ! st; c++)
+      for (size_t c0 = 0; c0 < cols && ! st; c0 += ncw)
         {
-          const double *fc = fpc + (c - c0) * n, *f0j = f0 + (c / n) * n;
-          double *dfc = df + (c / n) * n * n + (c % n) * n;
-          for (int i = 0; i < n; i++)
-            dfc[i] = (fc[i] - f0j[i]) / del[c];
+          size_t c1 = c0 + ncw < cols ? c0 + ncw : cols;
+          size_t lead = c0 == 0 ? nb : 0;   /* the states themselves, first */
+          double *ypc = yp + lead * n, *fpc = fp + lead * n;
+          for (size_t c = c0; c < c1; c++)
+            {
+              double *col = ypc + (c - c0) * n;
+              memcpy (col, y + (c / n) * n, (size_t) n * sizeof (double));
+              col[c % n] = yv[c];
+            }
+          st = batch ? sym_rhs_many (sys, (int) (c1 - c0 + lead),
+                                     tp + nb + c0 - lead, yp, fp)
+                     : sym_rhs (sys, tp[nb + c0], yp, fp);
+          if (! st && lead)
+            memcpy (fout, fp, lead * n * sizeof (double));
+          for (size_t c = c0; c < c1 && ! st; c++)
+            {
+              const double *fc = fpc + (c - c0) * n, *f0j = f0 + (c / n) * n;
+              double *dfc = df + (c / n) * n * n + (c % n) * n;
+              for (int i = 0; i < n; i++)
+                dfc[i] = (fc[i] - f0j[i]) / del[c];
+            }
         }
     }
   sys->cnt.nfd += sys->cnt.nrhs - before;
@@ -327,8 +334,24 @@ jac_probe (sym_system *sys, double t, const double *y, const double *f0,
       volatile double yi = y[i] + sq * size[i] * wt;   /* exact step */
       yp[i] = yi;
     }
-  if (! st)
-    st = sym_rhs (sys, t, yp, fp);
+  /* f NaN or Inf at the stepped state (y within a step of the edge of f's
+     domain): the opposite direction; NaN there too, no probe (Df is
+     kept, as the finite differences could not be made either) */
+  if (! st && (st = sym_rhs (sys, t, yp, fp)) == SYM_NONFINITE)
+    {
+      for (int i = 0; i < n; i++)
+        {
+          volatile double yi = y[i] - (yp[i] - y[i]);
+          yp[i] = yi;
+        }
+      st = sym_rhs (sys, t, yp, fp);
+      if (st == SYM_NONFINITE)
+        {
+          sys->cnt.nfd += sys->cnt.nrhs - before;
+          sym_free (w);
+          return SYM_SUCCESS;
+        }
+    }
   sys->cnt.nfd += sys->cnt.nrhs - before;
   if (st)
     {

@@ -47,6 +47,27 @@ nonsep_jac (double t, const double *y, double *df, void *u)
   return 0;
 }
 
+/* nonsep with f NaN for q beyond edge_hi or below edge_lo (the edge of
+   f's domain), singly and as a batch */
+static double edge_lo = -INFINITY, edge_hi = INFINITY;
+static int
+nonsep_edge (double t, const double *y, double *dy, void *u)
+{
+  int st = nonsep (t, y, dy, u);
+  if (y[0] > edge_hi || y[0] < edge_lo)
+    dy[1] = NAN;
+  return st;
+}
+
+static int
+nonsep_edge_batch (int k, const double *t, const double *y, double *dy,
+                   void *u)
+{
+  for (int j = 0; j < k; j++)
+    nonsep_edge (t[j], y + 2 * j, dy + 2 * j, u);
+  return 0;
+}
+
 /* nonsep's Df times *u (a user's Df too large, of the wrong sign, zero),
    and f with it in one call */
 static int
@@ -518,6 +539,70 @@ main (void)
     stp = sym_jac (&sj, 0.25, yp, NULL, dfp);
     CHECK (stp == 0 && sj.jac_probed && sj.jac_dropped, "probe again: %d",
            stp);
+  }
+
+  /* A state within a finite-difference step of the edge of f's domain:
+     the steps go backwards (forward ones gave NaN and ended runs at t0),
+     singly and in one batch call for three states; the probe of a user's
+     Df steps the other way; with NaN on both sides there is no probe
+     (Df kept) and no finite differences; NaN at the state itself stays
+     a failure. */
+  {
+    double ye[6] = { 0.3, -0.7, 0.3, -0.7, 0.3, -0.7 }, te[3] = { 0, 0, 0 };
+    double dfe[12], dfx[4], fx[6];
+    nonsep_jac (0, ye, dfx, NULL);
+    edge_hi = 0.3 + 1e-9;
+    for (int batch = 0; batch < 2; batch++)
+      {
+        sym_system se;
+        memset (&se, 0, sizeof se);
+        se.dim = 1;
+        se.rhs = nonsep_edge;
+        se.rhs_batch = batch ? nonsep_edge_batch : NULL;
+        int ste = sym_rhs_jac_many (&se, 3, te, ye, fx, dfe);
+        double e = 0.0;
+        for (int i = 0; i < 12; i++)
+          e = fmax (e, fabs (dfe[i] - dfx[i % 4]));
+        CHECK (ste == 0 && e < 1e-6, "FD at the edge (batch %d): status "
+               "%d, Df off by %.3g", batch, ste, e);
+      }
+    for (int k = 0; k < 2; k++)
+      {
+        double c = k ? 1e12 : 1.0;
+        sym_system se;
+        memset (&se, 0, sizeof se);
+        se.dim = 1;
+        se.rhs = nonsep_edge;
+        se.jac = nonsep_jac_c;
+        se.user = &c;
+        int ste = sym_jac (&se, 0, ye, NULL, dfe);
+        double e = 0.0;
+        for (int i = 0; i < 4; i++)
+          e = fmax (e, fabs (dfe[i] - (k ? 1.0 : c) * dfx[i]));
+        CHECK (ste == 0 && se.jac_probed && se.jac_dropped == k
+               && e < 1e-6, "probe at the edge, Df times %g: status %d, "
+               "dropped %d, off by %.3g", c, ste, se.jac_dropped, e);
+      }
+    edge_lo = 0.3 - 1e-9;
+    double c = 1e12;
+    sym_system se;
+    memset (&se, 0, sizeof se);
+    se.dim = 1;
+    se.rhs = nonsep_edge;
+    se.jac = nonsep_jac_c;
+    se.user = &c;
+    int ste = sym_jac (&se, 0, ye, NULL, dfe);
+    CHECK (ste == 0 && se.jac_probed && ! se.jac_dropped
+           && dfe[2] == c * dfx[2], "NaN both ways: no probe, status %d",
+           ste);
+    se.jac = NULL;
+    CHECK (sym_jac (&se, 0, ye, NULL, dfe) == SYM_NONFINITE,
+           "NaN both ways: no finite differences");
+    edge_lo = edge_hi = 0.0;
+    CHECK (sym_rhs_jac (&se, 0, ye, fx, dfe) == SYM_NONFINITE,
+           "NaN at the state itself");
+    edge_lo = -INFINITY;
+    edge_hi = INFINITY;
   }
 
   CHECK (nalloc == 0, "every allocation freed through the hook (%ld left)",
