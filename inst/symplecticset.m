@@ -146,6 +146,10 @@ function opts = symplecticset (varargin)
       [ours, names, vals] = put (ours, names, vals, fields, a,
                                  varargin{i+1}, true);
       i += 2;
+    elseif (ischar (a) && isempty (a))
+      error ("Octave:invalid-input-arg",
+             "symplecticset: argument %d is an empty option name; expected an option name such as \"TimeStepSize\"",
+             i);
     else
       error ("Octave:invalid-input-arg",
              "symplecticset: expected option names (strings) or structs, argument %d is a %s",
@@ -240,3 +244,4 @@ endfunction
 
 %!error <option "Nodes" has no value> symplecticset ("Nodes")
 %!error <expected option names> symplecticset (3)
+%!error <argument 3 is an empty option name> symplecticset ("Nodes", 3, "", 2)
