@@ -86,6 +86,21 @@ nonsep_both_c (double t, const double *y, double *dy, double *df, void *u)
   return st ? st : nonsep_jac_c (t, y, df, u);
 }
 
+/* a system of nonsep_edge with Df times *c (or finite differences), the
+   batch callback if asked for */
+static sym_system
+edge_system (double *c, int batch)
+{
+  sym_system se;
+  memset (&se, 0, sizeof se);
+  se.dim = 1;
+  se.rhs = nonsep_edge;
+  se.rhs_batch = batch ? nonsep_edge_batch : NULL;
+  se.jac = c ? nonsep_jac_c : NULL;
+  se.user = c;
+  return se;
+}
+
 /* The same H at the scale a: H = p^2/2 (1 + (q/a)^2) + q^2/2, whose
    solutions are a times those of a = 1 (u points at a) */
 static int
@@ -554,11 +569,7 @@ main (void)
     edge_hi = 0.3 + 1e-9;
     for (int batch = 0; batch < 2; batch++)
       {
-        sym_system se;
-        memset (&se, 0, sizeof se);
-        se.dim = 1;
-        se.rhs = nonsep_edge;
-        se.rhs_batch = batch ? nonsep_edge_batch : NULL;
+        sym_system se = edge_system (NULL, batch);
         int ste = sym_rhs_jac_many (&se, 3, te, ye, fx, dfe);
         double e = 0.0;
         for (int i = 0; i < 12; i++)
@@ -569,12 +580,7 @@ main (void)
     for (int k = 0; k < 2; k++)
       {
         double c = k ? 1e12 : 1.0;
-        sym_system se;
-        memset (&se, 0, sizeof se);
-        se.dim = 1;
-        se.rhs = nonsep_edge;
-        se.jac = nonsep_jac_c;
-        se.user = &c;
+        sym_system se = edge_system (&c, 0);
         int ste = sym_jac (&se, 0, ye, NULL, dfe);
         double e = 0.0;
         for (int i = 0; i < 4; i++)
@@ -585,12 +591,7 @@ main (void)
       }
     edge_lo = 0.3 - 1e-9;
     double c = 1e12;
-    sym_system se;
-    memset (&se, 0, sizeof se);
-    se.dim = 1;
-    se.rhs = nonsep_edge;
-    se.jac = nonsep_jac_c;
-    se.user = &c;
+    sym_system se = edge_system (&c, 0);
     int ste = sym_jac (&se, 0, ye, NULL, dfe);
     CHECK (ste == 0 && se.jac_probed && ! se.jac_dropped
            && dfe[2] == c * dfx[2], "NaN both ways: no probe, status %d",
