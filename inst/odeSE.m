@@ -140,7 +140,13 @@
 ## NewtonTol itself the angular momentum of a non-separable
 ## rotation-invariant H drifted by 1.9e-12 (1.1e-11 with @code{odeSV})
 ## over 10000 steps, at NewtonTol/100 by 3e-14, as round-off does
-## (@file{tests/test_se_sv.m}).  In adaptive runs, NewtonTol.
+## (@file{tests/test_se_sv.m}).  A solve that stops on a correction of
+## round-off size has f at the iterate before it, moved to the result by
+## the Jacobian (used unmoved, that error of a few ulps kept its sign too:
+## 1.5e-13 over 10000 steps with the Hessian given, 9e-15 moved).  With
+## finite differences @code{odeSV} still drifts, less: 4e-13 over 40000
+## steps of another such H, 2.4e-14 with NewtonTol = 1e-16.  In adaptive
+## runs, NewtonTol.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}; also, scalar ISTERMINAL and DIRECTION hold for every
 ## element of VALUE, @code{OutputSel} may be a logical mask, and the

@@ -272,6 +272,9 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       if ((st = sym_kick_solve (&kick, &s->o.r, cont, PH (cu), x, s->scale,
                                 s->rv)))
         return st;
+      /* f at [q_k; P] (moved there if the solve stopped on a round-off
+         correction) */
+      sym_fcache_move (&s->o.fc, t, q0, x);
       memcpy (ph, x, (size_t) d * sizeof (double));
       memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
       /* (2) */
@@ -285,6 +288,7 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       st = sym_kept_solve (&s->kq, &pq, sys, h, d, sc, x, s->scale, s->rv);
       if (st)
         return st;
+      sym_fcache_move (&s->o.fc, s->tk + s->hk, x, ph);
       memcpy (q1, x, (size_t) d * sizeof (double));
     }
   /* (3): the cache holds f at [q_{k+1}; p_{k+1/2}] on both paths */

@@ -275,15 +275,42 @@ sym_fcache_jac (sym_fcache *c, sym_system *sys, double t, const double *a,
 {
   const int d = c->d;
   int st;
+  c->have_jw = 0;
   if (! sys->jac)
     {
       if ((st = sym_fcache_f (c, sys, t, a, b)))
         return st;
-      return sym_jac (sys, t, c->yw, c->fw, c->jw);
+      st = sym_jac (sys, t, c->yw, c->fw, c->jw);
     }
-  memcpy (c->ym, a, (size_t) d * sizeof (double));
-  memcpy (c->ym + d, b, (size_t) d * sizeof (double));
-  return sym_jac (sys, t, c->ym, NULL, c->jw);
+  else
+    {
+      memcpy (c->ym, a, (size_t) d * sizeof (double));
+      memcpy (c->ym + d, b, (size_t) d * sizeof (double));
+      st = sym_jac (sys, t, c->ym, NULL, c->jw);
+    }
+  c->have_jw = st == SYM_SUCCESS;
+  return st;
+}
+
+void
+sym_fcache_move (sym_fcache *c, double t, const double *a, const double *b)
+{
+  const int d = c->d, n = 2 * d;
+  if (! c->have_fw || ! c->have_jw || c->tw != t
+      || (sym_same_vec (d, c->yw, a) && sym_same_vec (d, c->yw + d, b)))
+    return;
+  double *dy = c->ym;
+  for (int j = 0; j < d; j++)
+    {
+      dy[j] = a[j] - c->yw[j];
+      dy[d + j] = b[j] - c->yw[d + j];
+    }
+  for (int j = 0; j < n; j++)
+    if (dy[j] != 0.0)
+      for (int i = 0; i < n; i++)
+        c->fw[i] += c->jw[i + (size_t) j * n] * dy[j];
+  memcpy (c->yw, a, (size_t) d * sizeof (double));
+  memcpy (c->yw + d, b, (size_t) d * sizeof (double));
 }
 
 /* ---------------------------------------------------------------- Newton */

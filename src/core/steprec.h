@@ -84,6 +84,7 @@ typedef struct {
   double *yw, *fw, *ym, *jw;    /* n, n, n, n*n */
   double tw;
   int have_fw;
+  int have_jw;                  /* jw holds a Df (of some recent point) */
 } sym_fcache;
 
 /* The head of the SE and SV states (their first member): what their
@@ -115,6 +116,15 @@ int sym_fcache_f (sym_fcache *c, sym_system *sys, double t, const double *a,
    finds it in fw. */
 int sym_fcache_jac (sym_fcache *c, sym_system *sys, double t,
                     const double *a, const double *b);
+/* After a Newton solve that stopped on a correction of round-off size
+   (sym_kept_solve) fw holds f at the iterate before it: moved linearly by
+   jw to (t, [a; b]), no call.  Used as f there without the move, that
+   error of a few ulps kept its sign from step to step (the kept matrix)
+   and drifted: the angular momentum of a rotation-invariant H in 3-D,
+   odeSE, by 1.5e-17 per step.  Nothing is done where fw is at another t,
+   already at [a; b], or there is no Df in jw. */
+void sym_fcache_move (sym_fcache *c, double t, const double *a,
+                      const double *b);
 
 /* A Newton state with the h its matrix was built with and the iterations
    beyond SYM_NW_BASE charged to that matrix. */

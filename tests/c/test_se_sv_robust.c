@@ -3,6 +3,7 @@
    Jacobian, allocator), bad input, reset. */
 #include "se_sv_systems.h"
 #include "test_spvi_systems.h"   /* ts_osc_jac */
+#include "steprec.h"
 
 static const sym_stepper_type *
 stepper (int sv)
@@ -802,6 +803,37 @@ test_overflow (void)
         }
 }
 
+/* sym_fcache_move: f moved linearly by the cached Df to a nearby point at
+   the same t; nothing without a Df, at another t, or at the same point */
+static void
+test_fcache_move (void)
+{
+  double w[3 * 2 + 4];
+  sym_fcache c;
+  sym_fcache_place (&c, 1, 1, w);
+  c.yw[0] = 1.0;
+  c.yw[1] = 2.0;
+  c.fw[0] = 10.0;
+  c.fw[1] = 20.0;
+  c.tw = 0.5;
+  c.have_fw = 1;
+  const double J[4] = { 1.0, 3.0, 2.0, 4.0 };   /* column-major */
+  memcpy (c.jw, J, sizeof J);
+  double a = 1.0 + 1e-3, b = 2.0 - 2e-3;
+  sym_fcache_move (&c, 0.5, &a, &b);
+  CHECK (c.fw[0] == 10.0 && c.fw[1] == 20.0, "no Df: no move");
+  c.have_jw = 1;
+  sym_fcache_move (&c, 0.25, &a, &b);
+  CHECK (c.fw[0] == 10.0 && c.yw[0] == 1.0, "another t: no move");
+  sym_fcache_move (&c, 0.5, &a, &b);
+  CHECK_CLOSE (c.fw[0], 10.0 + 1.0 * 1e-3 - 2.0 * 2e-3, 1e-14, "f_q moved");
+  CHECK_CLOSE (c.fw[1], 20.0 + 3.0 * 1e-3 - 4.0 * 2e-3, 1e-14, "f_p moved");
+  CHECK (c.yw[0] == a && c.yw[1] == b, "now at the point");
+  double f0 = c.fw[0];
+  sym_fcache_move (&c, 0.5, &a, &b);
+  CHECK (c.fw[0] == f0, "same point: no move");
+}
+
 int
 main (void)
 {
@@ -814,6 +846,7 @@ main (void)
   test_newton_fail ();
   test_jac_check ();
   test_overflow ();
+  test_fcache_move ();
   test_alloc_failure ();
   test_separable_memory ();
   test_bad_input_and_reset ();
