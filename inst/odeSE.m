@@ -95,6 +95,12 @@
 ## @item Separable
 ## @qcode{"on"} for H = T(p) + V(q) with no forcing that depends on p: the
 ## step is explicit, two evaluations of @var{fcn} per step and no Newton.
+## Those two evaluations are at the same q and t with two values of p, so
+## a dH/dq (with the forcing) that changes with p shows there: the run
+## then warns, once, with the identifier @code{symplectic:not-separable}
+## (@code{odeSV}'s are at the same p with two q, so it warns when dH/dp
+## changes with q, or with t).  The explicit step of an H that is not
+## separable is not the method: of lower order, and not symplectic.
 ## @item Jacobian, HamiltonianHessFcn
 ## Newton's matrix needs df/dy = J * Hess(H), J = [0 I; -I 0], taken from
 ## the first of: the @code{Jacobian} option (matrix or handle returning
@@ -206,7 +212,8 @@
 ## no event after the row where it stopped is returned), and
 ## @code{symplectic:tolerance} for a RelTol raised to 100*eps,
 ## @code{symplectic:tspan-beyond-end} for output times after the end of
-## TimeStepNumber steps; an error in a
+## TimeStepNumber steps, @code{symplectic:not-separable} (see
+## @code{Separable}); an error in a
 ## function of the user's ends the run with that error; bad
 ## arguments raise errors with the identifier
 ## @code{Octave:invalid-input-arg} whose message begins with the solver's

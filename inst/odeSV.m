@@ -33,7 +33,9 @@
 ## energy error stays bounded (of size h^2) over very long runs, and the
 ## momenta of the symmetries of H are conserved to round-off.  With
 ## @code{Separable} @qcode{"on"} (H = T(p) + V(q)) it is the explicit
-## leapfrog: two evaluations of @var{fcn} per step.
+## leapfrog: two evaluations of @var{fcn} per step, at the same p with two
+## q; a dH/dp that differs between them (H not separable) gets the
+## warning @code{symplectic:not-separable}.
 ##
 ## Arguments, outputs and options are those of @code{odeSE} (see
 ## @code{help odeSE}): @code{TimeStepSize}/@code{TimeStepNumber} for fixed

@@ -165,6 +165,31 @@
 %! endfor
 
 %!test
+%! ## Separable "on" with an f that is not separable: the explicit steps
+%! ## find it from the f they evaluate anyway (odeSE: dH/dq at the same q
+%! ## with two p; odeSV: dH/dp at the same p with two q) and warn; a
+%! ## separable H, also with forcing in t, gives no warning
+%! fns = {@nonsep, @(t, y) [y(2); -y(1) - 0.1*y(2)], ...
+%!        @(t, y) [y(2); -sin(y(1)) + 0.5*cos(t)], @kepler};
+%! y0s = {[0.5 0.3], [0.5 0.3], [0.5 0.3], [0.4 0 0 2]};
+%! ## which warn: odeSE the first two, odeSV the first (damping leaves its
+%! ## dH/dp alone)
+%! expect = {[true true false false], [true false false false]};
+%! solvers = {@odeSE, @odeSV};
+%! for k = 1:2
+%!   for j = 1:4
+%!     for o = {struct("Separable", "on", "TimeStepSize", 0.1), ...
+%!              struct("Separable", "on")}
+%!       lastwarn ("");
+%!       evalc ("[~, ~] = solvers{k} (fns{j}, [0 1], y0s{j}, o{1});");
+%!       [msg, id] = lastwarn ();
+%!       assert (strcmp (id, "symplectic:not-separable"), expect{k}(j),
+%!               sprintf ("%s, f %d: [%s] %s", func2str (solvers{k}), j, id, msg));
+%!     endfor
+%!   endfor
+%! endfor
+
+%!test
 %! ## odeSV is time-reversible
 %! N = 200;  h = 0.05;  y0 = [0.3; -0.7];
 %! o = symplecticset ("TimeStepSize", h);

@@ -484,6 +484,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
     ytyp[i] = fabs (y[i]);
   sys->ytyp = ytyp;
   sys->jac_probed = 0;
+  sys->sep_broken = 0;
 
   double t = o->t0;
   int result = SYM_DONE;

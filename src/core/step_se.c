@@ -145,6 +145,8 @@ se_step (void *state, sym_system *sys, double t, double h, const double *y,
       st = sym_fcache_f (&s->o.fc, sys, t, q0, p1);
       if (st)
         return st;
+      /* f_p at (t, q0) with p0 and with p1: the same if H is separable */
+      sym_sep_check (sys, t, d, tr->f0 + d, s->o.fc.fw + d);
       for (int i = 0; i < d; i++)
         q1[i] = q0[i] + h * s->o.fc.fw[i];
     }

@@ -259,9 +259,13 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
         return st;
       for (int i = 0; i < d; i++)
         q1[i] = q0[i] + h * s->o.fc.fw[i];
+      memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
       st = sym_fcache_f (&s->o.fc, sys, tr->tend, q1, ph);   /* B */
       if (st)
         return st;
+      /* f_q at p_{k+1/2} with q0 and with q1: the same if H is separable
+         (and T does not depend on t) */
+      sym_sep_check (sys, t, d, s->fqa, s->o.fc.fw);
     }
   else
     {

@@ -110,6 +110,12 @@ typedef struct {
   double jac_dropped_t;       /* at this t */
   int jac_probed;             /* the user's Df was probed (SYM_JAC_GROSS);
                                  sym_integrate clears it for its run */
+  int sep_broken;             /* Separable steps found f not separable:
+                                 f_p changed with p at the same (t, q)
+                                 (SE), or f_q with q at the same p (SV),
+                                 by more than SYM_SEP_TOL of f; first at
+                                 sep_broken_t.  sym_integrate clears it */
+  double sep_broken_t;
   /* NULL, or the n typical sizes of y's components that set the steps of
      the finite differences (see sym_jac): sym_integrate points it, for its
      run, at the largest |y_i| of y0 and the accepted steps, and sets it
@@ -375,6 +381,15 @@ typedef struct {
    max(|t0|, N h)), so that N steps of h still end on the time N h stands
    for; otherwise tf. */
 double sym_fixed_end (const sym_driver_opts *o);
+
+/* Separable steps (odeSE/odeSV with Separable) check, with the f they
+   evaluate anyway, that f_p does not change with p at the same (t, q)
+   (SE) or f_q with q at the same p (SV), to this relative size */
+#define SYM_SEP_TOL 1e-8
+/* Whether u and v (k values) differ by more than SYM_SEP_TOL of their
+   size; if so, sets sys->sep_broken (and _t) at t the first time */
+void sym_sep_check (sym_system *sys, double t, int k, const double *u,
+                    const double *v);
 
 /* Integrate from y0.  Returns SYM_DONE, SYM_STOP_OUTPUT, SYM_STOP_EVENT or a
    status < 0 (rows handed to the output sink so far stay valid).

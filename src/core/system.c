@@ -447,6 +447,25 @@ sym_rhs_jac_many (sym_system *sys, int k, const double *t, const double *y,
   return st ? st : sym_jac_many (sys, k, t, y, f, df);
 }
 
+void
+sym_sep_check (sym_system *sys, double t, int k, const double *u,
+               const double *v)
+{
+  if (sys->sep_broken)
+    return;
+  double big = 0.0, dif = 0.0;
+  for (int i = 0; i < k; i++)
+    {
+      big = fmax (big, fmax (fabs (u[i]), fabs (v[i])));
+      dif = fmax (dif, fabs (u[i] - v[i]));
+    }
+  if (dif > SYM_SEP_TOL * big)
+    {
+      sys->sep_broken = 1;
+      sys->sep_broken_t = t;
+    }
+}
+
 int
 sym_jac_check (sym_system *sys, double t, const double *y, int *dropped)
 {

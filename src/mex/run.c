@@ -1094,6 +1094,18 @@ symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
                          name, sym_status_name (status));
     }
 
+  /* Separable on, but f found not separable by the steps themselves */
+  if (sys.sep_broken)
+    mexWarnMsgIdAndTxt ("symplectic:not-separable", "%s: Separable is on, "
+                        "but FCN is not of a separable H = T(p) + V(q) "
+                        "without p in the forcing: %s at t = %.17g; the "
+                        "explicit steps are then not the method (of lower "
+                        "order, not symplectic): set Separable off", name,
+                        solver->type == sym_step_se
+                        ? "dH/dq changed with p at the same q"
+                        : "dH/dp changed with q (or t) at the same p",
+                        sys.sep_broken_t);
+
   /* the source of Newton's matrices, and whether it was dropped for
      finite differences after a Newton failure (sym_jac_check) */
   char jac_used[160];

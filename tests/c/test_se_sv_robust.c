@@ -834,6 +834,43 @@ test_fcache_move (void)
   CHECK (c.fw[0] == f0, "same point: no move");
 }
 
+/* Separable steps flag an f that is not separable (sym_sep_check): SE
+   when f_p moves with p (P_H1, and the damping of P_DAMPED), SV when f_q
+   moves with q (P_H1); not for the separable problems, forced in t or
+   not */
+static void
+test_sep_check (void)
+{
+  const int kinds[] = { P_H1, P_DAMPED, P_PEND, P_PENDF, P_HO, P_KEPLER };
+  const int se_flags[] = { 1, 1, 0, 0, 0, 0 }, sv_flags[] = { 1, 0, 0, 0,
+                                                             0, 0 };
+  for (int sv = 0; sv < 2; sv++)
+    for (int k = 0; k < 6; k++)
+      {
+        tprob P;
+        sym_system sys = tp_system (&P, kinds[k], 0);
+        P.c = 0.1;
+        sym_method_opts mo = tp_opts (1, 0, 0);
+        sym_driver_opts o;
+        memset (&o, 0, sizeof o);
+        o.t0 = 0.0;
+        o.tf = 1.0;
+        o.h_fixed = 0.1;
+        o.refine = 1;
+        double y0[4] = { 0.5, 0.3, 0.1, 1.2 }, yend[4], tr = 0.0;
+        o.output = keep_last;
+        o.output_user = yend;
+        sys.sep_broken = -1;   /* cleared by the run */
+        int st = sym_integrate (stepper (sv), &sys, &mo, &o, y0, &tr);
+        int want = sv ? sv_flags[k] : se_flags[k];
+        CHECK (st == SYM_DONE && sys.sep_broken == want
+               && (! want || sys.sep_broken_t == 0.0), "%s kind %d: "
+               "status %s, not separable %d (want %d) at t = %g",
+               mname (sv), kinds[k], sym_status_name (st), sys.sep_broken,
+               want, sys.sep_broken_t);
+      }
+}
+
 int
 main (void)
 {
@@ -847,6 +884,7 @@ main (void)
   test_jac_check ();
   test_overflow ();
   test_fcache_move ();
+  test_sep_check ();
   test_alloc_failure ();
   test_separable_memory ();
   test_bad_input_and_reset ();
