@@ -687,6 +687,22 @@ nan_jac (double t, const double *y, double *df, void *user)
    agrees.  The Df that misses the damping of P_DAMPED is the undamped
    oscillator's, ts_osc_jac.  A Df with a NaN (f finite) is dropped too:
    before, the step shrank to nothing. */
+/* Driver options of a fixed-step run from 0 to tf with steps h, the rows
+   handed to out (user data u) */
+static sym_driver_opts
+fixed_run (double tf, double h, sym_output_fn out, void *u)
+{
+  sym_driver_opts o;
+  memset (&o, 0, sizeof o);
+  o.t0 = 0.0;
+  o.tf = tf;
+  o.h_fixed = h;
+  o.refine = 1;
+  o.output = out;
+  o.output_user = u;
+  return o;
+}
+
 static void
 test_jac_check (void)
 {
@@ -718,14 +734,7 @@ test_jac_check (void)
           P.c = 100.0;
           sys.jac = k == 2 ? nan_jac : k ? ts_osc_jac : NULL;
           sym_method_opts mo = tp_opts (0, 0, 0);
-          sym_driver_opts o;
-          memset (&o, 0, sizeof o);
-          o.t0 = 0.0;
-          o.tf = 2.0;
-          o.h_fixed = 0.01;
-          o.refine = 1;
-          o.output = keep_last;
-          o.output_user = yend[k];
+          sym_driver_opts o = fixed_run (2.0, 0.01, keep_last, yend[k]);
           double y0[2] = { 1.0, 0.0 }, tr = 0.0;
           int st = sym_integrate (stepper (sv), &sys, &mo, &o, y0, &tr);
           CHECK (st == SYM_DONE && tr == 2.0, "%s, c = 100, %s: %s at t = "
@@ -784,15 +793,9 @@ test_overflow (void)
           sys.rhs = rhs_watch;
           rhs_saw_inf = 0;
           sym_method_opts mo = tp_opts (sep, 0, dense);
-          sym_driver_opts o;
-          memset (&o, 0, sizeof o);
-          o.t0 = 0.0;
-          o.tf = 1200.0;
-          o.h_fixed = 3.0;
-          o.refine = dense ? 4 : 1;
           rows_seen r = { 0, 1, NAN };
-          o.output = rows_watch;
-          o.output_user = &r;
+          sym_driver_opts o = fixed_run (1200.0, 3.0, rows_watch, &r);
+          o.refine = dense ? 4 : 1;
           double y0[2] = { 1.0, 0.0 }, tr = 0.0;
           int st = sym_integrate (stepper (sv), &sys, &mo, &o, y0, &tr);
           CHECK (st == SYM_EOVERFLOW && tr == 1104.0 && r.t == 1104.0
@@ -851,15 +854,8 @@ test_sep_check (void)
         sym_system sys = tp_system (&P, kinds[k], 0);
         P.c = 0.1;
         sym_method_opts mo = tp_opts (1, 0, 0);
-        sym_driver_opts o;
-        memset (&o, 0, sizeof o);
-        o.t0 = 0.0;
-        o.tf = 1.0;
-        o.h_fixed = 0.1;
-        o.refine = 1;
         double y0[4] = { 0.5, 0.3, 0.1, 1.2 }, yend[4], tr = 0.0;
-        o.output = keep_last;
-        o.output_user = yend;
+        sym_driver_opts o = fixed_run (1.0, 0.1, keep_last, yend);
         sys.sep_broken = -1;   /* cleared by the run */
         int st = sym_integrate (stepper (sv), &sys, &mo, &o, y0, &tr);
         int want = sv ? sv_flags[k] : se_flags[k];
