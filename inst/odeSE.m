@@ -141,18 +141,19 @@
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).  With
 ## a fixed step (here and in @code{odeSV}) each solve is converged to
-## NewtonTol/100: the Newton matrix is kept across steps, so the error a
+## NewtonTol/1000: the Newton matrix is kept across steps, so the error a
 ## stop leaves has the same sign from step to step and adds up; at
 ## NewtonTol itself the angular momentum of a non-separable
 ## rotation-invariant H drifted by 1.9e-12 (1.1e-11 with @code{odeSV})
-## over 10000 steps, at NewtonTol/100 by 3e-14, as round-off does
-## (@file{tests/test_se_sv.m}).  A solve that stops on a correction of
-## round-off size has f at the iterate before it, moved to the result by
-## the Jacobian (used unmoved, that error of a few ulps kept its sign too:
-## 1.5e-13 over 10000 steps with the Hessian given, 9e-15 moved).  With
-## finite differences @code{odeSV} still drifts, less: 4e-13 over 40000
-## steps of another such H, 2.4e-14 with NewtonTol = 1e-16.  In adaptive
-## runs, NewtonTol.
+## over 10000 steps, at NewtonTol/100 by 3e-14, as round-off does; on
+## another such H with finite differences, whose matrices contract more
+## slowly, @code{odeSV} still drifted at NewtonTol/100 (9.8e-14 over
+## 10000 steps), at NewtonTol/1000 not (5.8e-15), for 0 to 2.4% more
+## calls (@file{tests/test_se_sv.m}).  A solve that stops on a correction
+## of round-off size has f at the iterate before it, moved to the result
+## by the Jacobian (used unmoved, that error of a few ulps kept its sign
+## too: 1.5e-13 over 10000 steps with the Hessian given, 9e-15 moved).
+## In adaptive runs, NewtonTol.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}; also, scalar ISTERMINAL and DIRECTION hold for every
 ## element of VALUE, @code{OutputSel} may be a logical mask, and the

@@ -51,7 +51,8 @@
 ## @qcode{"off"}.
 ## @item NewtonTol
 ## Stopping tolerance of Newton's method, relative to the size of y.
-## Default 1e-14.  Fixed steps are converged to NewtonTol/100.
+## Default 1e-14.  Fixed steps are converged to NewtonTol/100
+## (@code{odeSPVI}) and NewtonTol/1000 (@code{odeSE}, @code{odeSV}).
 ## @item MaxNewtonIterations
 ## Newton iterations per solve before the matrix is refreshed or the step
 ## is retried.  Default 10.

@@ -17,11 +17,13 @@
      else p_k + (p_k - p_{k-1}) h / h_prev when the last accepted step ended
      at (t_k, y_k), else f(t_k, y_k) is evaluated (one call).
    - Stop: max_i |dP_i| / s <= tol (opts->newton_tol, default
-     1e-14; for a fixed step SYM_FIXED_TOL = 1e-2 times that, steprec.h),
+     1e-14; for a fixed step SYM_FIXED_TOL_KEPT = 1e-3 times that,
+     steprec.h),
      with s = max(|p_k|_inf, |P0 - p_k|_inf) (1 if both vanish).
    - q_{k+1} needs f_q at the final P, but the last residual was evaluated
      at the previous iterate: f is evaluated at P once more (unless the last
-     correction was round-off, |dP| <= 4 eps s).  That gives G(P) for free,
+     correction was round-off, |dP| <= 4 eps s: f is then moved there by Df,
+     sym_fcache_move).  That gives G(P) for free,
      and it must be <= 4 tol s, else Newton goes on from P with the
      contraction rate this residual shows (at most three solves): newton.c
      may stop after a single iteration, judging by the rate of an earlier

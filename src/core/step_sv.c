@@ -23,13 +23,15 @@
      step ended at (t_k, y_k), else f(t_k, y_k) is evaluated (one call);
      Q0 = q_k + h f_q(t_k, q_k, P).
    - Stop: max_i |dx_i| / s <= tol (opts->newton_tol, default
-     1e-14; for a fixed step SYM_FIXED_TOL = 1e-2 times that, steprec.h),
+     1e-14; for a fixed step SYM_FIXED_TOL_KEPT = 1e-3 times that,
+     steprec.h),
      with s the max norm of p_k (q_k) or of the predicted increment
      P0 - p_k (Q0 - q_k), whichever is larger (1 if both vanish).
    - The f values used after each solve are those at the converged unknown:
      the last residual was evaluated at the previous iterate, so f is
      evaluated at the solution once more (unless the last correction was
-     round-off, |dx| <= 4 eps s).  That gives the residual for free, and it
+     round-off, |dx| <= 4 eps s: f is then moved there by Df,
+     sym_fcache_move).  That gives the residual for free, and it
      must be <= 4 tol s, else Newton goes on from there (see solve()).
    - Each factored matrix is kept across steps while it pays and while h
      stays within 20% of the h it was built with: each solve's iterations

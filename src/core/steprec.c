@@ -372,7 +372,7 @@ sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts)
   if (opts && opts->newton_tol > 0)
     k->nw.tol = opts->newton_tol;
   if (opts && ! opts->want_error)
-    k->nw.tol *= SYM_FIXED_TOL;
+    k->nw.tol *= SYM_FIXED_TOL_KEPT;
   if (opts && opts->max_newton > 0)
     k->nw.maxit = opts->max_newton;
   return SYM_SUCCESS;
