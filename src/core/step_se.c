@@ -158,9 +158,7 @@ se_step (void *state, sym_system *sys, double t, double h, const double *y,
       if ((st = sym_kick_solve (&kick, &s->o.r, cont, cu->y0 + d, s->x,
                                 s->scale, s->rv)))
         return st;
-      /* the cache holds f at [q_k; P] (moved there if the solve stopped
-         on a round-off correction) */
-      sym_fcache_move (&s->o.fc, t, q0, s->x);
+      /* the cache holds f at [q_k; P] */
       memcpy (p1, s->x, (size_t) d * sizeof (double));
       for (int i = 0; i < d; i++)
         q1[i] = q0[i] + h * s->o.fc.fw[i];

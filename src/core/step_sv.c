@@ -278,9 +278,7 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       if ((st = sym_kick_solve (&kick, &s->o.r, cont, PH (cu), x, s->scale,
                                 s->rv)))
         return st;
-      /* f at [q_k; P] (moved there if the solve stopped on a round-off
-         correction) */
-      sym_fcache_move (&s->o.fc, t, q0, x);
+      /* the cache holds f at [q_k; P] */
       memcpy (ph, x, (size_t) d * sizeof (double));
       memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
       /* (2) */

@@ -436,5 +436,10 @@ sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
         break;
     }
   sym_newton_problem prob = { kick_residual, kick_matrix, (void *) kk };
-  return sym_kept_solve (kk->k, &prob, kk->sys, kk->h, d, sc, x, scale, rv);
+  st = sym_kept_solve (kk->k, &prob, kk->sys, kk->h, d, sc, x, scale, rv);
+  /* f at [q_k; P] (moved there if the solve stopped on a round-off
+     correction) */
+  if (! st)
+    sym_fcache_move (kk->fc, kk->t, kk->yk, x);
+  return st;
 }

@@ -180,7 +180,8 @@ typedef struct {
    p_k + (p_k - prev) h / h_prev from the last accepted step when it ends
    where this one starts (cont; prev: its p at the point matching P), else
    f(t_k, y_k) is evaluated (one call).  Newton's scale is
-   max(|p_k|, |P0 - p_k|) (1 if both vanish). */
+   max(|p_k|, |P0 - p_k|) (1 if both vanish).  On success the cache holds
+   f at [q_k; P] (sym_fcache_move). */
 int sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
                     const double *prev, double *x, double *scale,
                     double *rv);
