@@ -29,6 +29,32 @@ function dy = kepler_v (t, y)
   dy = [y(3:4, :); -q ./ r.^3];
 endfunction
 
+function [dy, ddy] = rot3 (t, y)
+  ## H = |p|^2/2 (1 + |q|^2/4) + |q|^4/8 + (q.p)^2/4 in 3-D: rotation
+  ## invariant, not separable (tests/test_se_sv.m); the Hessian as second
+  ## output
+  q = y(1:3);  p = y(4:6);  s = q.' * p;  I = eye (3);
+  dy = [p * (1 + q.'*q/4) + s*q/2; -(q * (p.'*p)/4 + q * (q.'*q)/2 + s*p/2)];
+  if (nargout > 1)
+    Hqp = p*q.'/2 + s*I/2 + q*p.'/2;
+    ddy = [(p.'*p)/4*I + (q.'*q)/2*I + q*q.' + p*p.'/2, Hqp;
+           Hqp.', (1 + q.'*q/4)*I + q*q.'/2];
+  endif
+endfunction
+
+function dy = rot3_f (t, y)
+  ## rot3 without the Hessian: finite-difference matrices
+  dy = rot3 (t, y);
+endfunction
+
+function r = ifelse_ (c, a, b)
+  if (c)
+    r = a;
+  else
+    r = b;
+  endif
+endfunction
+
 function dy = kepler_count (t, y)
   ## kepler, counting its calls (A1)
   global A1_NCALLS
@@ -277,6 +303,29 @@ endfor
 rows_(end+1, :) = {"P6n", "FPU chain d = 1, 10, odeSPVI (4,3) with NewtonMatrix new: time per step / that of the kept matrix", ...
                 sprintf("%s (calls/step %s)", mat2str(per_n, 2), mat2str(cps_n, 3)), ...
                 "shown (the Hessian's cost decides)"};
+
+## ---------------------------------------------------------------- S1
+## odeSE and odeSV on a non-separable H: Newton on every step, started from
+## the history of the unknowns; fixed steps h = 0.01 and 0.05 over t = 20,
+## with the Hessian as second output and with finite differences
+yr = [1; 0.2; -0.3; 0.1; 0.8; 0.4];
+txt = {};
+for solver = {@odeSE, @odeSV}
+  for fn = {@rot3, @rot3_f}
+    for h = [0.01 0.05]
+      os = symplecticset ("TimeStepSize", h);
+      ss = solver{1} (fn{1}, [0 20], yr, os);
+      tps = timeit (@() solver{1} (fn{1}, [0 20], yr, os), 1) / ss.stats.nsteps;
+      txt{end+1} = sprintf ("%s %s h = %.2f: %.0f us, %.2f calls", ...
+                            func2str (solver{1}), ...
+                            ifelse_ (isequal (fn{1}, @rot3), "Hessian", "FD"), ...
+                            h, 1e6 * tps, ...
+                            (ss.stats.nfevals + ss.stats.npds) / ss.stats.nsteps);
+    endfor
+  endfor
+endfor
+rows_(end+1, :) = {"S1", "odeSE, odeSV on a non-separable H in 3-D (tests/test_se_sv.m), fixed step, Newton started from the last steps: time and callbacks (fcn + Hessian) per step", ...
+                strjoin(txt, "; "), "shown"};
 
 ## ---------------------------------------------------------------- report
 [~, cpu] = system ("sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1");

@@ -41,7 +41,16 @@
 ## symmetries of H (angular momentum for a central force) to round-off.  A
 ## forcing term gives the discrete Lagrange--d'Alembert (forced variational)
 ## integrator.  The implicit equation for p(k+1) is solved by Newton's
-## method to near machine precision.
+## method to near machine precision, started from the values of p(k+1) at
+## the last steps: the errors of an explicit start (p(k) + h f_p(t(k),
+## y(k)) when f there is known, else the last step's increment of p) over
+## up to 16 steps, extrapolated by the polynomial of degree (up to 14)
+## that would have predicted the newest of them best.  On a non-separable
+## H at a fixed step this makes a step cost about as many evaluations of
+## @var{fcn} as the explicit separable one (2.00 per step in
+## @file{tests/test_se_sv.m}, 4.0 from the explicit start alone).  A
+## solve from there that fails (Newton, or @var{fcn} NaN or asking for a
+## smaller step) is tried again from the explicit start.
 ##
 ## @strong{Arguments} are those of @code{ode45}: @var{tspan} = [t0, tf]
 ## returns a row at every step; with more than two (strictly monotonic)
@@ -142,14 +151,13 @@
 ## Newton's stopping tolerance (1e-14 relative) and iterations (10).  With
 ## a fixed step (here and in @code{odeSV}) each solve is converged to
 ## NewtonTol/1000: the Newton matrix is kept across steps, so the error a
-## stop leaves has the same sign from step to step and adds up; at
-## NewtonTol itself the angular momentum of a non-separable
-## rotation-invariant H drifted by 1.9e-12 (1.1e-11 with @code{odeSV})
-## over 10000 steps, at NewtonTol/100 by 3e-14, as round-off does; on
-## another such H with finite differences, whose matrices contract more
-## slowly, @code{odeSV} still drifted at NewtonTol/100 (9.8e-14 over
-## 10000 steps), at NewtonTol/1000 not (5.8e-15), for 0 to 2.4% more
-## calls (@file{tests/test_se_sv.m}).  A solve that stops on a correction
+## stop leaves has the same sign from step to step and adds up.  On the
+## non-separable rotation-invariant H of @file{tests/test_se_sv.m} (h =
+## 0.05, 10000 steps) the angular momentum drifted at NewtonTol itself by
+## 2.8e-13 to 7.2e-13 (@code{odeSE} or @code{odeSV}, with the Hessian
+## given or finite differences); at NewtonTol/1000 it stays within 1e-14,
+## as round-off does, for at most 10% more calls.  A solve that stops on
+## a correction
 ## of round-off size has f at the iterate before it, moved to the result
 ## by the Jacobian (used unmoved, that error of a few ulps kept its sign
 ## too: 1.5e-13 over 10000 steps with the Hessian given, 9e-15 moved).

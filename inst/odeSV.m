@@ -37,6 +37,14 @@
 ## q; a dH/dp that differs between them (H not separable) gets the
 ## warning @code{symplectic:not-separable}.
 ##
+## The implicit equations for p(k+1/2) and q(k+1) are solved by Newton's
+## method started, as in @code{odeSE}, from their values at the last steps
+## (the errors of the explicit starts p(k) + (h/2) f_p(t(k), q(k),
+## p(k-1/2)), exact for a separable H, and q(k) + h f_q(t(k), q(k),
+## p(k+1/2)), extrapolated): on the non-separable H of
+## @file{tests/test_se_sv.m} at h = 0.01, 3.97 evaluations of @var{fcn}
+## per step (8.0 from the explicit starts alone).
+##
 ## Arguments, outputs and options are those of @code{odeSE} (see
 ## @code{help odeSE}): @code{TimeStepSize}/@code{TimeStepNumber} for fixed
 ## steps, @code{RelTol}/@code{AbsTol} for adaptive ones, the four sources

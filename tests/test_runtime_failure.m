@@ -324,9 +324,13 @@
 %!test
 %! ## so a right Hessian is not taken for a wrong one at a small scale:
 %! ## before, after a Newton failure the differences (wrong there) replaced
-%! ## it, and the runs at a = 1e-10 took 3 to 74 times the calls
+%! ## it, and the runs at a = 1e-10 took 3 to 74 times the calls.  The
+%! ## same steps at every scale; the calls within 5%: odeSE's solves start
+%! ## from the history of the unknown, at round-off from the solution in
+%! ## places, so whether a last correction is round-off (and f at the
+%! ## solution needs no call) follows the last bits (62429 vs 61080 calls)
 %! for s = all3
-%!   n = [];
+%!   n = k = [];
 %!   for a = [1 1e-10]
 %!     f = @(t, y) a * [y(2)/a * (1 + (y(1)/a)^2); -((y(2)/a)^2 * y(1)/a + y(1)/a)];
 %!     hs = @(t, y) [(y(2)/a)^2 + 1, 2 * y(2)*y(1)/a^2; 2 * y(2)*y(1)/a^2, 1 + (y(1)/a)^2];
@@ -334,8 +338,10 @@
 %!     sol = s{1} (f, [0 20], a * [0.8; 0.6], symplecticset (o, "HamiltonianHessFcn", hs));
 %!     assert (sol.stats.jacobian_source, "HamiltonianHessFcn");
 %!     n(end+1) = sol.stats.nfevals;
+%!     k(end+1) = sol.stats.nsteps;
 %!   endfor
-%!   assert (n(2), n(1), 0.01 * n(1));
+%!   assert (k(2), k(1));
+%!   assert (n(2), n(1), 0.05 * n(1));
 %! endfor
 
 %!test

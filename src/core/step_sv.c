@@ -18,10 +18,15 @@
      (2) G(Q) = Q - q_k - (h/2) [f_q(t_k, q_k, P) + f_q(t_{k+1}, Q, P)],
                                                        G' ~ I - (h/2) A_qq
    (A_pp = d f_p/d p, A_qq = d f_q/d q, blocks of Df from sym_jac).
-   - Starts: P0 = p_k + (h/2) f_p(t_k, y_k) when f(t_k, y_k) is known
-     (FSAL), else p_k + (p_k - p_{k-1/2}) h / h_prev when the last accepted
-     step ended at (t_k, y_k), else f(t_k, y_k) is evaluated (one call);
-     Q0 = q_k + h f_q(t_k, q_k, P).
+   - Starts: the explicit P0 = p_k + (h/2) f_p(t_k, y_k) when f(t_k, y_k)
+     is known (FSAL), else p_k + (p_k - p_{k-1/2}) h / h_prev (= p_k + (h/2)
+     f_p(t_k, q_k, p_{k-1/2}), exact for a separable H) when the last
+     accepted step ended at (t_k, y_k), else f(t_k, y_k) is evaluated (one
+     call); Q0 = q_k + h f_q(t_k, q_k, P); each plus, when the steps
+     continue one another, the errors P - P0 (Q - Q0) of the last steps
+     extrapolated (sym_pred, steprec.h; again from P0 (Q0) alone after a
+     recoverable failure from there).  Measured on P_H1 of tests/c (h =
+     0.01): 3.86 calls per step, the explicit starts alone 7.89.
    - Stop: max_i |dx_i| / s <= tol (opts->newton_tol, default
      1e-14; for a fixed step SYM_FIXED_TOL_KEPT = 1e-3 times that,
      steprec.h),
@@ -158,7 +163,8 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
      separable step is explicit: no Df and no Newton state (O(d^2)) */
   const int implicit = ! s->separable;
   size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d, implicit)
-               + 4 * (size_t) d + (size_t) n;
+               + 4 * (size_t) d + (size_t) n
+               + (implicit ? 2 * sym_pred_len (d) : 0);
   s->block = sym_calloc (len, sizeof (double));
   if (! s->block
       || (implicit && (sym_kept_init (&s->kp, d, opts)
@@ -177,7 +183,13 @@ sv_alloc (const sym_system *sys, const sym_method_opts *opts, int *status)
   s->scale = w; w += d;
   s->rv = w; w += d;
   s->fqa = w; w += d;
-  s->ym = w;
+  s->ym = w; w += n;
+  if (implicit)
+    {
+      s->o.npr = 2;
+      sym_pred_place (&s->o.pr[0], d, w);
+      sym_pred_place (&s->o.pr[1], d, w + sym_pred_len (d));
+    }
   *status = SYM_SUCCESS;
   return s;
 }
@@ -274,22 +286,24 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       double *x = s->x;
       /* (1), started by an explicit half kick when f(t, y) is known, else
          by the last step's first half kick */
-      sym_kick kick = { d, &s->o.fc, &s->kp, sys, t, h, hh, tr->y0 };
+      sym_kick kick = { d, &s->o.fc, &s->kp, sys, t, h, hh, tr->y0,
+                        &s->o.pr[0] };
       if ((st = sym_kick_solve (&kick, &s->o.r, cont, PH (cu), x, s->scale,
                                 s->rv)))
         return st;
       /* the cache holds f at [q_k; P] */
       memcpy (ph, x, (size_t) d * sizeof (double));
       memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
-      /* (2) */
+      /* (2), started from the history of q_{k+1} with the base q_k + h
+         f_q(t_k, q_k, P) when it serves, else (and again after a
+         recoverable failure from there) by the base (sym_pred_solve) */
       s->pk = ph;
-      for (int i = 0; i < d; i++)
-        x[i] = q0[i] + h * s->fqa[i];
-      double sc = sym_norm_inf (d, q0);
-      for (int i = 0; i < d; i++)
-        sc = fmax (sc, fabs (x[i] - q0[i]));
       sym_newton_problem pq = { res_q, mat_q, s };
-      st = sym_kept_solve (&s->kq, &pq, sys, h, d, sc, x, s->scale, s->rv);
+      double *base = s->o.pr[1].xb;
+      for (int i = 0; i < d; i++)
+        base[i] = q0[i] + h * s->fqa[i];
+      st = sym_pred_solve (&s->kq, &pq, sys, h, &s->o.pr[1], cont, tr->tend,
+                           1, base, q0, x, s->scale, s->rv);
       if (st)
         return st;
       sym_fcache_move (&s->o.fc, s->tk + s->hk, x, ph);

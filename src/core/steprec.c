@@ -198,6 +198,119 @@ sym_rec_hermite (const sym_rec *c, int n, double th, double *y)
   sym_hermite (n, c->h, th, c->y0, c->y1, c->f0, c->f1, y);
 }
 
+/* ------------------------------------------------------------- predictor */
+
+size_t
+sym_pred_len (int d)
+{
+  return (SYM_PRED_MAX + 2) * (size_t) d;
+}
+
+void
+sym_pred_place (sym_pred *p, int d, double *w)
+{
+  memset (p, 0, sizeof (*p));
+  p->d = d;
+  p->x = w;
+  p->xnew = w + SYM_PRED_MAX * (size_t) d;
+  p->xb = p->xnew + d;
+}
+
+void
+sym_pred_note (sym_pred *p, int cont, double t, const double *x, int kind,
+               const double *base)
+{
+  for (int i = 0; i < p->d; i++)
+    p->xnew[i] = x[i] - base[i];
+  p->tnew = t;
+  p->new_cont = cont;
+  p->new_kind = kind;
+  p->have_new = 1;
+}
+
+/* the accepted trial's value becomes the newest; a trial that did not
+   continue the last accepted step, or had another kind of base, starts
+   the history anew */
+static void
+pred_commit (sym_pred *p)
+{
+  const int d = p->d;
+  if (! p->have_new || ! p->new_cont || p->new_kind != p->kind)
+    p->n = 0;
+  if (! p->have_new)
+    return;
+  int keep = p->n < SYM_PRED_MAX ? p->n : SYM_PRED_MAX - 1;
+  memmove (p->x + d, p->x, (size_t) keep * d * sizeof (double));
+  memmove (p->t + 1, p->t, (size_t) keep * sizeof (double));
+  memcpy (p->x, p->xnew, (size_t) d * sizeof (double));
+  p->t[0] = p->tnew;
+  p->n = keep + 1;
+  p->kind = p->new_kind;
+  p->have_new = 0;
+}
+
+/* the weights at t of the Lagrange polynomial through the times ts[0..m-1]
+   (distinct) */
+static void
+lagrange_weights (int m, const double *ts, double t, double *w)
+{
+  for (int j = 0; j < m; j++)
+    {
+      double v = 1.0;
+      for (int k = 0; k < m; k++)
+        if (k != j)
+          v *= (t - ts[k]) / (ts[j] - ts[k]);
+      w[j] = v;
+    }
+}
+
+int
+sym_pred_start (const sym_pred *p, double t, int kind, const double *base,
+                double *x)
+{
+  const int n = p->n, d = p->d;
+  if (kind != p->kind || n < 2)
+    return 0;
+  /* ahead of the newest value by at most twice the last spacing */
+  const double ratio = (t - p->t[0]) / (p->t[0] - p->t[1]);
+  if (! (ratio > 0.0 && ratio <= 2.0))
+    return 0;
+  double w[SYM_PRED_MAX];
+  /* L = -1: the base alone (no history term) */
+  int best = -1;
+  double beste = INFINITY;
+  for (int L = -1; L + 2 <= n && L <= SYM_PRED_MAX - 2; L++)
+    {
+      /* the newest error from the L + 1 before it */
+      if (L >= 0)
+        lagrange_weights (L + 1, p->t + 1, p->t[0], w);
+      double e = 0.0;
+      for (int i = 0; i < d; i++)
+        {
+          double v = p->x[i];
+          for (int j = 0; j <= L; j++)
+            v -= w[j] * p->x[(size_t) (j + 1) * d + i];
+          e = fmax (e, fabs (v));
+        }
+      if (e < beste)
+        {
+          beste = e;
+          best = L;
+        }
+    }
+  if (best < 0)   /* the base alone: the caller's start */
+    return 0;
+  lagrange_weights (best + 1, p->t, t, w);
+  for (int i = 0; i < d; i++)
+    {
+      double v = base[i];
+      for (int j = 0; j <= best; j++)
+        v += w[j] * p->x[(size_t) j * d + i];
+      x[i] = v;
+    }
+  return 1;
+}
+
 void
 sym_recs_forget (sym_recs *r)
 {
@@ -210,7 +323,11 @@ sym_recs_forget (sym_recs *r)
 void
 sym_onestep_accept (void *state)
 {
-  sym_recs_accept (&((sym_onestep *) state)->r);
+  sym_onestep *o = state;
+  if (o->r.trial_ok)
+    for (int k = 0; k < o->npr; k++)
+      pred_commit (&o->pr[k]);
+  sym_recs_accept (&o->r);
 }
 
 int
@@ -228,6 +345,8 @@ sym_onestep_reset (void *state)
   sym_onestep *o = state;
   sym_recs_forget (&o->r);
   o->fc.have_fw = 0;
+  for (int k = 0; k < o->npr; k++)
+    o->pr[k].n = o->pr[k].have_new = 0;
 }
 
 /* ---------------------------------------------------------------- f cache */
@@ -409,34 +528,82 @@ kick_matrix (void *ctx, const double *x, double *a)
   return SYM_SUCCESS;
 }
 
+/* The kick's explicit start into xb: p_k + c f_p(t_k, y_k) when f there
+   is known (returns 1); else, when the trial continues the last accepted
+   step, that step's matching increment (p_k - prev), rescaled to this h
+   (returns 2: SE's p_k + h f_p(t_{k-1}, q_{k-1}, p_k), SV's p_k + (h/2)
+   f_p(t_k, q_k, p_{k-1/2}), which is exact for a separable H); else 0. */
+static int
+kick_explicit (const sym_kick *kk, const sym_recs *r, int cont,
+               const double *prev, double *xb)
+{
+  const int d = kk->d;
+  const sym_rec *tr = r->trial, *cu = r->cur;
+  const double *p0 = tr->y0 + d;
+  if (tr->have_f0)
+    {
+      for (int i = 0; i < d; i++)
+        xb[i] = p0[i] + kk->c * tr->f0[d + i];
+      return 1;
+    }
+  if (! cont)
+    return 0;
+  for (int i = 0; i < d; i++)
+    xb[i] = p0[i] + (p0[i] - prev[i]) * (kk->h / cu->h);
+  return 2;
+}
+
+int
+sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
+                sym_system *sys, double h, sym_pred *pr, int cont, double t,
+                int kind, const double *base, const double *ref, double *x,
+                double *scale, double *rv)
+{
+  const int d = pr->d;
+  int st = SYM_NEWTON_FAIL, tried = 0;
+  for (int from_pred = cont; st > 0 && from_pred >= 0; from_pred--)
+    {
+      if (from_pred && ! sym_pred_start (pr, t, kind, base, x))
+        continue;
+      if (! from_pred)
+        {
+          /* no history, or a recoverable failure from its start (Newton's,
+             or fcn's at a start off the solution) */
+          sys->cnt.nrestart += tried;
+          memcpy (x, base, (size_t) d * sizeof (double));
+        }
+      double sc = sym_norm_inf (d, ref);
+      for (int i = 0; i < d; i++)
+        sc = fmax (sc, fabs (x[i] - ref[i]));
+      st = sym_kept_solve (k, prob, sys, h, d, sc, x, scale, rv);
+      tried = 1;
+    }
+  if (! st)
+    sym_pred_note (pr, cont, t, x, kind, base);
+  return st;
+}
+
 int
 sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
                 const double *prev, double *x, double *scale, double *rv)
 {
   const int d = kk->d;
-  const sym_rec *tr = r->trial, *cu = r->cur;
-  const double *p0 = tr->y0 + d;
-  double sc = 0.0;
-  int st;
-  for (int pass = 0; pass < 2; pass++)
-    {
-      if (! tr->have_f0 && (! cont || pass == 1)
-          && (st = sym_recs_f0 (r, kk->sys)))
-        return st;
-      if (tr->have_f0)
-        for (int i = 0; i < d; i++)
-          x[i] = p0[i] + kk->c * tr->f0[d + i];
-      else   /* cont: the last step's matching increment, rescaled */
-        for (int i = 0; i < d; i++)
-          x[i] = p0[i] + (p0[i] - prev[i]) * (kk->h / cu->h);
-      sc = sym_norm_inf (d, p0);
-      for (int i = 0; i < d; i++)
-        sc = fmax (sc, fabs (x[i] - p0[i]));
-      if (sc > 0.0 || tr->have_f0)
-        break;
-    }
+  const double *p0 = r->trial->y0 + d;
   sym_newton_problem prob = { kick_residual, kick_matrix, (void *) kk };
-  st = sym_kept_solve (kk->k, &prob, kk->sys, kk->h, d, sc, x, scale, rv);
+  double *xb = kk->pr->xb;
+  int kind = kick_explicit (kk, r, cont, prev, xb);
+  /* f(t_k, y_k) is evaluated when there is no explicit start without it,
+     or when its increment and p_k both vanish (no scale for Newton) */
+  if (! kind || (kind == 2 && sym_norm_inf (d, p0) == 0.0
+                 && sym_norm_inf (d, xb) == 0.0))
+    {
+      int st = sym_recs_f0 (r, kk->sys);
+      if (st)
+        return st;
+      kind = kick_explicit (kk, r, cont, prev, xb);
+    }
+  int st = sym_pred_solve (kk->k, &prob, kk->sys, kk->h, kk->pr, cont,
+                           kk->t + kk->c, kind, xb, p0, x, scale, rv);
   /* f at [q_k; P] (moved there if the solve stopped on a round-off
      correction) */
   if (! st)

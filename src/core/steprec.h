@@ -38,7 +38,11 @@
    at 1e-3, 2.2e-14, for the same calls per step (14.598).  Calls per
    step on five problems (pendulum, Kepler and these with Separable off,
    finite differences or the Hessian): +0 to +0.5%, +2.4% for odeSE on H
-   = p^2/2 (1 + q^2) + q^2/2 with finite differences. */
+   = p^2/2 (1 + q^2) + q^2/2 with finite differences.  Still needed with
+   the starts from the history (sym_pred): on the first H at h = 0.05,
+   10000 steps, L drifted by 2.8e-13 to 7.2e-13 at the tolerance itself
+   (odeSE, odeSV; Hessian or finite differences), <= 1e-14 at 1e-3 of it,
+   for at most 10% more calls. */
 #define SYM_FIXED_TOL_KEPT 1e-3
 
 /* One step: its start, end, the f values known at its two ends, and the
@@ -97,11 +101,62 @@ typedef struct {
   int have_jw;                  /* jw holds a Df (of some recent point) */
 } sym_fcache;
 
+/* The start of an implicit solve from the history of its unknown x (SE:
+   p_{k+1}; SV: p_{k+1/2} and q_{k+1}) over the last accepted steps.  The
+   history holds the errors x - base of an explicit start, the base (the
+   kick's p_k + c f_p(t_k, y_k) when f there is known, else its
+   continuation of the last step's increment, see sym_kick_solve; SV's
+   q_k + h f_q(t_k, q_k, p_{k+1/2})): a smooth function of the step's
+   start, O(h^2), and zero where the base is exact (as for a separable
+   part of H).  They are extrapolated to the new step by the Lagrange
+   polynomial through the newest L + 1 of them at the times they stand
+   for, L the degree (0 to SYM_PRED_MAX - 2, or none: the base alone) that
+   would have predicted the newest error best from the ones before it.
+   Measured (tests/c/test_se_sv_robust.c, LU policy, P_H1, h = 0.01 and
+   0.05, rhs + jac calls per step): SE 2.00 and 3.29, SV 3.86 and 6.16;
+   with the explicit starts alone 4.04 and 5.34, 7.89 and 9.80.  On the
+   3-D H of tests/test_se_sv.m with the Hessian, h = 0.05, calls per step
+   of odeSE (odeSV) with errors kept over 4, 8, 12, 16 steps: 4.52 (8.97),
+   3.55 (6.97), 3.31 (6.13), 3.06 (6.00); at h = 0.01, 3.01 (6.00) with
+   4, 2.00 (3.97) from 8 on; at h = 0.1 and 0.2, 4.74 and 5.23 (9.10 and
+   10.60) with 16, 6.56 and 8.05 (11.35 and 13.57) from the explicit
+   starts. */
+#define SYM_PRED_MAX 16
+typedef struct {
+  int d, n;                /* errors held, newest first */
+  int kind;                /* of their base (a caller's label) */
+  int have_new, new_cont, new_kind;  /* the trial's solved value, whether
+                              the trial continued the last accepted step,
+                              the kind of its base */
+  double t[SYM_PRED_MAX], tnew;
+  double *x;               /* SYM_PRED_MAX * d */
+  double *xnew;            /* d */
+  double *xb;              /* d: work for the caller's base */
+} sym_pred;
+
+size_t sym_pred_len (int d);
+void sym_pred_place (sym_pred *p, int d, double *w);
+/* the trial's solution x of its unknown at time t, base its explicit
+   start of the given kind; cont: the trial starts where the last accepted
+   step ended */
+void sym_pred_note (sym_pred *p, int cont, double t, const double *x,
+                    int kind, const double *base);
+/* The start for the unknown at time t into x (kind, base: as for
+   sym_pred_note; x may be base) when the history holds at least two
+   errors of a base of that kind, t is ahead of the newest by at most
+   twice the spacing of the last two, and an extrapolation predicted the
+   newest error better than none; returns 1, else 0 (x untouched: the
+   base alone is the start). */
+int sym_pred_start (const sym_pred *p, double t, int kind,
+                    const double *base, double *x);
+
 /* The head of the SE and SV states (their first member): what their
    accept, dense output and reset act on */
 typedef struct {
   sym_recs r;            /* last accepted step, step being tried */
   sym_fcache fc;         /* the last f evaluated */
+  int npr;               /* implicit unknowns with a predictor (0 to 2) */
+  sym_pred pr[2];
 } sym_onestep;
 
 /* accept, dense and reset of a state that starts with a sym_onestep;
@@ -162,6 +217,20 @@ int sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
    opts' */
 int sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts);
 
+/* sym_kept_solve for the unknown of the history pr at time t, from
+   sym_pred_start's start when the trial continues the last accepted step
+   (cont) and the history serves, else from base (kind: as for
+   sym_pred_note); again from base after a recoverable failure
+   (status > 0) from the history's start (counted in nrestart).  The
+   scale is the max norm of ref (the unknown's value at the step's start)
+   or of the start's distance to it, whichever is larger.  On success x
+   is noted in the history. */
+int sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
+                    sym_system *sys, double h, sym_pred *pr, int cont,
+                    double t, int kind, const double *base,
+                    const double *ref, double *x, double *scale,
+                    double *rv);
+
 /* The implicit kick P = p_k + c f_p(t_k, q_k, P) of symplectic Euler
    (c = h) and of Stormer-Verlet's first half kick (c = h/2):
      G(P) = P - p_k - c f_p(t_k, q_k, P),   G'(P) ~ I - c A_pp,
@@ -173,15 +242,19 @@ typedef struct {
   sym_system *sys;
   double t, h, c;         /* t_k, the step, the kick's coefficient */
   const double *yk;       /* [q_k; p_k] */
+  sym_pred *pr;           /* the history of P (at t_k + c) */
 } sym_kick;
 
 /* Solve the kick of the trial step of r into x (d), with scale, rv: d of
-   work.  Start: P0 = p_k + c f_p(t_k, y_k) when f(t_k, y_k) is known, else
-   p_k + (p_k - prev) h / h_prev from the last accepted step when it ends
-   where this one starts (cont; prev: its p at the point matching P), else
-   f(t_k, y_k) is evaluated (one call).  Newton's scale is
-   max(|p_k|, |P0 - p_k|) (1 if both vanish).  On success the cache holds
-   f at [q_k; P] (sym_fcache_move). */
+   work, by sym_pred_solve with the history kk->pr.  The base (the
+   explicit start): P0 = p_k + c f_p(t_k, y_k) when f(t_k, y_k) is known,
+   else p_k + (p_k - prev) h / h_prev from the last accepted step when it
+   ends where this one starts (cont; prev: its p at the point matching P;
+   for SV this is p_k + c f_p(t_k, q_k, p_{k-1/2}), exact for a separable
+   H), else f(t_k, y_k) is evaluated (one call), as it is when that
+   increment and p_k both vanish.  Newton's scale is max(|p_k|, |start -
+   p_k|) (1 if both vanish).  On success the cache holds f at [q_k; P]
+   (sym_fcache_move). */
 int sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
                     const double *prev, double *x, double *scale,
                     double *rv);

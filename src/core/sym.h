@@ -90,6 +90,8 @@ typedef struct {
   long nnewton_fail;/* Newton solves that failed */
   long nlu;         /* LU factorizations */
   long nsolve;      /* linear solves with an LU */
+  long nrestart;    /* SE/SV solves started again from the explicit start
+                       after a recoverable failure from the history's */
 } sym_counters;
 
 typedef struct {
