@@ -47,14 +47,6 @@ function dy = rot3_f (t, y)
   dy = rot3 (t, y);
 endfunction
 
-function r = ifelse_ (c, a, b)
-  if (c)
-    r = a;
-  else
-    r = b;
-  endif
-endfunction
-
 function dy = kepler_count (t, y)
   ## kepler, counting its calls (A1)
   global A1_NCALLS
@@ -310,16 +302,15 @@ rows_(end+1, :) = {"P6n", "FPU chain d = 1, 10, odeSPVI (4,3) with NewtonMatrix 
 ## with the Hessian as second output and with finite differences
 yr = [1; 0.2; -0.3; 0.1; 0.8; 0.4];
 txt = {};
+fns = {@rot3, @rot3_f};  labels = {"Hessian", "FD"};
 for solver = {@odeSE, @odeSV}
-  for fn = {@rot3, @rot3_f}
+  for k = 1:2
     for h = [0.01 0.05]
       os = symplecticset ("TimeStepSize", h);
-      ss = solver{1} (fn{1}, [0 20], yr, os);
-      tps = timeit (@() solver{1} (fn{1}, [0 20], yr, os), 1) / ss.stats.nsteps;
+      ss = solver{1} (fns{k}, [0 20], yr, os);
+      tps = timeit (@() solver{1} (fns{k}, [0 20], yr, os), 1) / ss.stats.nsteps;
       txt{end+1} = sprintf ("%s %s h = %.2f: %.0f us, %.2f calls", ...
-                            func2str (solver{1}), ...
-                            ifelse_ (isequal (fn{1}, @rot3), "Hessian", "FD"), ...
-                            h, 1e6 * tps, ...
+                            func2str (solver{1}), labels{k}, h, 1e6 * tps, ...
                             (ss.stats.nfevals + ss.stats.npds) / ss.stats.nsteps);
     endfor
   endfor
