@@ -19,7 +19,7 @@
      call); plus, when the steps continue one another, the errors P - P0
      of the last steps extrapolated (sym_pred, steprec.h; again from P0
      alone after a recoverable failure from there).  Measured on P_H1 of
-     tests/c (H = p^2/2 (1 + q^2) + q^2/2, h = 0.01): 2.00 calls per step
+     tests/c (H = p^2/2 (1 + q^2) + q^2/2, h = 0.01): 2.01 calls per step
      (rhs + jac), the explicit start alone 4.04 (its matrix was also
      rebuilt on 70% of the steps).
    - Stop: max_i |dP_i| / s <= tol (opts->newton_tol, default

@@ -302,8 +302,8 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
       double *base = s->o.pr[1].xb;
       for (int i = 0; i < d; i++)
         base[i] = q0[i] + h * s->fqa[i];
-      st = sym_pred_solve (&s->kq, &pq, sys, h, &s->o.pr[1], cont, tr->tend,
-                           1, base, q0, x, s->scale, s->rv);
+      st = sym_pred_solve (&s->kq, &pq, sys, h, &s->o.pr[1], cont, h, 1,
+                           base, q0, x, s->scale, s->rv);
       if (st)
         return st;
       sym_fcache_move (&s->o.fc, s->tk + s->hk, x, ph);

@@ -217,12 +217,14 @@ sym_pred_place (sym_pred *p, int d, double *w)
 }
 
 void
-sym_pred_note (sym_pred *p, int cont, double t, const double *x, int kind,
-               const double *base)
+sym_pred_note (sym_pred *p, int cont, double h, double c, const double *x,
+               int kind, const double *base)
 {
+  const double h2 = h * h;
   for (int i = 0; i < p->d; i++)
-    p->xnew[i] = x[i] - base[i];
-  p->tnew = t;
+    p->xnew[i] = (x[i] - base[i]) / h2;
+  p->hnew = h;
+  p->cnew = c;
   p->new_cont = cont;
   p->new_kind = kind;
   p->have_new = 1;
@@ -241,9 +243,11 @@ pred_commit (sym_pred *p)
     return;
   int keep = p->n < SYM_PRED_MAX ? p->n : SYM_PRED_MAX - 1;
   memmove (p->x + d, p->x, (size_t) keep * d * sizeof (double));
-  memmove (p->t + 1, p->t, (size_t) keep * sizeof (double));
+  memmove (p->hs + 1, p->hs, (size_t) keep * sizeof (double));
+  memmove (p->cs + 1, p->cs, (size_t) keep * sizeof (double));
   memcpy (p->x, p->xnew, (size_t) d * sizeof (double));
-  p->t[0] = p->tnew;
+  p->hs[0] = p->hnew;
+  p->cs[0] = p->cnew;
   p->n = keep + 1;
   p->kind = p->new_kind;
   p->have_new = 0;
@@ -265,14 +269,24 @@ lagrange_weights (int m, const double *ts, double t, double *w)
 }
 
 int
-sym_pred_start (const sym_pred *p, double t, int kind, const double *base,
-                double *x)
+sym_pred_start (const sym_pred *p, double h, double c, int kind,
+                const double *base, double *x)
 {
   const int n = p->n, d = p->d;
   if (kind != p->kind || n < 2)
     return 0;
+  /* the times of the values from the start of the newest one's step, and
+     of the new unknown */
+  double u[SYM_PRED_MAX], s = 0.0;
+  u[0] = p->cs[0];
+  for (int k = 1; k < n; k++)
+    {
+      s -= p->hs[k];
+      u[k] = s + p->cs[k];
+    }
+  const double t = p->hs[0] + c;
   /* ahead of the newest value by at most twice the last spacing */
-  const double ratio = (t - p->t[0]) / (p->t[0] - p->t[1]);
+  const double ratio = (t - u[0]) / (u[0] - u[1]);
   if (! (ratio > 0.0 && ratio <= 2.0))
     return 0;
   double w[SYM_PRED_MAX];
@@ -283,7 +297,7 @@ sym_pred_start (const sym_pred *p, double t, int kind, const double *base,
     {
       /* the newest error from the L + 1 before it */
       if (L >= 0)
-        lagrange_weights (L + 1, p->t + 1, p->t[0], w);
+        lagrange_weights (L + 1, u + 1, u[0], w);
       double e = 0.0;
       for (int i = 0; i < d; i++)
         {
@@ -300,13 +314,13 @@ sym_pred_start (const sym_pred *p, double t, int kind, const double *base,
     }
   if (best < 0)   /* the base alone: the caller's start */
     return 0;
-  lagrange_weights (best + 1, p->t, t, w);
+  lagrange_weights (best + 1, u, t, w);
   for (int i = 0; i < d; i++)
     {
-      double v = base[i];
+      double v = 0.0;
       for (int j = 0; j <= best; j++)
         v += w[j] * p->x[(size_t) j * d + i];
-      x[i] = v;
+      x[i] = base[i] + h * h * v;
     }
   return 1;
 }
@@ -555,7 +569,7 @@ kick_explicit (const sym_kick *kk, const sym_recs *r, int cont,
 
 int
 sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
-                sym_system *sys, double h, sym_pred *pr, int cont, double t,
+                sym_system *sys, double h, sym_pred *pr, int cont, double c,
                 int kind, const double *base, const double *ref, double *x,
                 double *scale, double *rv)
 {
@@ -563,7 +577,7 @@ sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
   int st = SYM_NEWTON_FAIL, tried = 0;
   for (int from_pred = cont; st > 0 && from_pred >= 0; from_pred--)
     {
-      if (from_pred && ! sym_pred_start (pr, t, kind, base, x))
+      if (from_pred && ! sym_pred_start (pr, h, c, kind, base, x))
         continue;
       if (! from_pred)
         {
@@ -579,7 +593,7 @@ sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
       tried = 1;
     }
   if (! st)
-    sym_pred_note (pr, cont, t, x, kind, base);
+    sym_pred_note (pr, cont, h, c, x, kind, base);
   return st;
 }
 
@@ -603,7 +617,7 @@ sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
       kind = kick_explicit (kk, r, cont, prev, xb);
     }
   int st = sym_pred_solve (kk->k, &prob, kk->sys, kk->h, kk->pr, cont,
-                           kk->t + kk->c, kind, xb, p0, x, scale, rv);
+                           kk->c, kind, xb, p0, x, scale, rv);
   /* f at [q_k; P] (moved there if the solve stopped on a round-off
      correction) */
   if (! st)

@@ -40,9 +40,9 @@
    finite differences or the Hessian): +0 to +0.5%, +2.4% for odeSE on H
    = p^2/2 (1 + q^2) + q^2/2 with finite differences.  Still needed with
    the starts from the history (sym_pred): on the first H at h = 0.05,
-   10000 steps, L drifted by 2.8e-13 to 7.2e-13 at the tolerance itself
+   10000 steps, L drifted by 1.5e-13 to 7.8e-13 at the tolerance itself
    (odeSE, odeSV; Hessian or finite differences), <= 1e-14 at 1e-3 of it,
-   for at most 10% more calls. */
+   for at most 12% more calls. */
 #define SYM_FIXED_TOL_KEPT 1e-3
 
 /* One step: its start, end, the f values known at its two ends, and the
@@ -108,19 +108,27 @@ typedef struct {
    continuation of the last step's increment, see sym_kick_solve; SV's
    q_k + h f_q(t_k, q_k, p_{k+1/2})): a smooth function of the step's
    start, O(h^2), and zero where the base is exact (as for a separable
-   part of H).  They are extrapolated to the new step by the Lagrange
-   polynomial through the newest L + 1 of them at the times they stand
-   for, L the degree (0 to SYM_PRED_MAX - 2, or none: the base alone) that
+   part of H).  Divided by h^2, they are extrapolated to the new step by
+   the Lagrange polynomial through the newest L + 1 of them at the times
+   they stand for (offsets from their steps' starts plus the steps'
+   sizes), L the degree (0 to SYM_PRED_MAX - 2, or none: the base alone) that
    would have predicted the newest error best from the ones before it.
    Measured (tests/c/test_se_sv_robust.c, LU policy, P_H1, h = 0.01 and
-   0.05, rhs + jac calls per step): SE 2.00 and 3.29, SV 3.86 and 6.16;
+   0.05, rhs + jac calls per step): SE 2.01 and 3.29, SV 3.86 and 6.13;
    with the explicit starts alone 4.04 and 5.34, 7.89 and 9.80.  On the
    3-D H of tests/test_se_sv.m with the Hessian, h = 0.05, calls per step
    of odeSE (odeSV) with errors kept over 4, 8, 12, 16 steps: 4.52 (8.97),
-   3.55 (6.97), 3.31 (6.13), 3.06 (6.00); at h = 0.01, 3.01 (6.00) with
-   4, 2.00 (3.97) from 8 on; at h = 0.1 and 0.2, 4.74 and 5.23 (9.10 and
+   3.55 (6.97), 3.31 (6.13), 3.05 (6.00); at h = 0.01, 3.01 (6.00) with
+   4, 2.00 (3.98) from 8 on; at h = 0.1 and 0.2, 4.73 and 5.22 (9.10 and
    10.60) with 16, 6.56 and 8.05 (11.35 and 13.57) from the explicit
-   starts. */
+   starts.  Dividing by h^2 (an error of the explicit start is O(h^2))
+   keeps them smooth where h changes: adaptive odeSV at RelTol = AbsTol =
+   1e-7 on that H takes 13% fewer calls than without.  Far from t = 0 a
+   fixed step (the representable increment of t, driver.c) varies by the
+   round-off of t, and the errors with it (SE's explicit start has terms
+   in h h_prev): odeSE at h = 0.01 then takes 2.28, 2.56, 3.00 calls per
+   step from t0 = 1e4, 1e6, 1e8 instead of 2.00 (4.0 from the explicit
+   start alone). */
 #define SYM_PRED_MAX 16
 typedef struct {
   int d, n;                /* errors held, newest first */
@@ -128,7 +136,9 @@ typedef struct {
   int have_new, new_cont, new_kind;  /* the trial's solved value, whether
                               the trial continued the last accepted step,
                               the kind of its base */
-  double t[SYM_PRED_MAX], tnew;
+  double hs[SYM_PRED_MAX], hnew;  /* the sizes of their steps */
+  double cs[SYM_PRED_MAX], cnew;  /* their offsets from their steps'
+                                     starts */
   double *x;               /* SYM_PRED_MAX * d */
   double *xnew;            /* d */
   double *xb;              /* d: work for the caller's base */
@@ -136,18 +146,19 @@ typedef struct {
 
 size_t sym_pred_len (int d);
 void sym_pred_place (sym_pred *p, int d, double *w);
-/* the trial's solution x of its unknown at time t, base its explicit
-   start of the given kind; cont: the trial starts where the last accepted
-   step ended */
-void sym_pred_note (sym_pred *p, int cont, double t, const double *x,
-                    int kind, const double *base);
-/* The start for the unknown at time t into x (kind, base: as for
+/* the solution x of its unknown of the trial step of size h, at offset c
+   from the step's start (t_k + c), base its explicit start of the given
+   kind; cont: the trial starts where the last accepted step ended */
+void sym_pred_note (sym_pred *p, int cont, double h, double c,
+                    const double *x, int kind, const double *base);
+/* The start into x for the unknown at offset c from the start of a trial
+   step that continues the last accepted one (kind, base: as for
    sym_pred_note; x may be base) when the history holds at least two
-   errors of a base of that kind, t is ahead of the newest by at most
-   twice the spacing of the last two, and an extrapolation predicted the
-   newest error better than none; returns 1, else 0 (x untouched: the
-   base alone is the start). */
-int sym_pred_start (const sym_pred *p, double t, int kind,
+   errors of a base of that kind, the unknown is ahead of the newest by
+   at most twice the spacing of the last two, and an extrapolation
+   predicted the newest error better than none; returns 1, else 0 (x
+   untouched: the base alone is the start). */
+int sym_pred_start (const sym_pred *p, double h, double c, int kind,
                     const double *base, double *x);
 
 /* The head of the SE and SV states (their first member): what their
@@ -217,7 +228,8 @@ int sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
    opts' */
 int sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts);
 
-/* sym_kept_solve for the unknown of the history pr at time t, from
+/* sym_kept_solve for the unknown of the history pr at offset c from the
+   start of the trial step (of size h), from
    sym_pred_start's start when the trial continues the last accepted step
    (cont) and the history serves, else from base (kind: as for
    sym_pred_note); again from base after a recoverable failure
@@ -227,7 +239,7 @@ int sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts);
    is noted in the history. */
 int sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
                     sym_system *sys, double h, sym_pred *pr, int cont,
-                    double t, int kind, const double *base,
+                    double c, int kind, const double *base,
                     const double *ref, double *x, double *scale,
                     double *rv);
 

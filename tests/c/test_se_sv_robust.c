@@ -234,7 +234,7 @@ test_jacobian_sources (void)
    never rebuilt, 4.00 rebuilt every step, 3.97 with the rule; SV 10.50,
    7.87, 7.83.  Here: bounds on the cost at h = 0.01 and 0.05 with the
    starts from the history of the unknowns (sym_pred), which also keep the
-   matrix longer: SE 2.00 and 3.29, SV 3.86 and 6.16 (with the explicit
+   matrix longer: SE 2.01 and 3.29, SV 3.86 and 6.13 (with the explicit
    starts alone 4.04, 5.34, 7.89, 9.80). */
 static void
 test_lu_reuse (void)
@@ -823,8 +823,8 @@ test_overflow (void)
 }
 
 /* The history of an implicit unknown (sym_pred): where the errors of the
-   base are a polynomial of degree <= 8 in t (at equal or unequal
-   spacings) the start is exact once deg + 2 of them show it; the base
+   base over h^2 are a polynomial of degree <= 8 in t (at equal or unequal
+   steps) the start is exact once deg + 2 of them show it; the base
    alone (no start) where its errors vanish; no start with one error,
    beyond twice the last spacing or backwards; a trial that does not
    continue, changes its kind of base or is accepted without a value
@@ -838,12 +838,13 @@ pred_poly (int deg, int i, double t)
   return v;
 }
 
-/* one accepted step with value x(t) (kind, base) into o's history */
+/* one accepted step of size h with the value x at offset c (kind, base)
+   into o's history */
 static void
-pred_accept (sym_onestep *o, int cont, double t, const double *x, int kind,
-             const double *base)
+pred_accept (sym_onestep *o, int cont, double h, double c, const double *x,
+             int kind, const double *base)
 {
-  sym_pred_note (&o->pr[0], cont, t, x, kind, base);
+  sym_pred_note (&o->pr[0], cont, h, c, x, kind, base);
   o->r.trial_ok = 1;
   sym_onestep_accept (o);
 }
@@ -860,71 +861,71 @@ test_pred (void)
         memset (&o, 0, sizeof o);
         o.npr = 1;
         sym_pred_place (&o.pr[0], D, w);
-        double t = 0.1, err = 0.0;
+        /* steps from Tr; the unknown at Tr + h/2 (as SV's p_{k+1/2}) */
+        double Tr = 0.0, err = 0.0;
         int started = 0;
         for (int k = 0; k < 14; k++)
           {
             double h = uneven ? 0.05 * (1.0 + 0.3 * (k % 3)) : 0.05;
+            double ts = Tr + 0.5 * h;
             for (int i = 0; i < D; i++)
               {
-                base[i] = cos (3.0 * t + i);
-                x[i] = base[i] + pred_poly (deg, i, t);
+                base[i] = cos (3.0 * ts + i);
+                x[i] = base[i] + h * h * pred_poly (deg, i, ts);
               }
-            if (sym_pred_start (&o.pr[0], t, 1, base, v)
+            if (sym_pred_start (&o.pr[0], h, 0.5 * h, 1, base, v)
                 && o.pr[0].n >= deg + 2)
               {
                 started++;
                 for (int i = 0; i < D; i++)
                   err = fmax (err, fabs (v[i] - x[i]));
               }
-            pred_accept (&o, k > 0, t, x, 1, base);
-            t += h;
+            pred_accept (&o, k > 0, h, 0.5 * h, x, 1, base);
+            Tr += h;
           }
         /* from the (deg + 2)-th value (the second for deg 0) on */
-        int from = deg + 2;
-        CHECK (started == 14 - from && err <= 1e-10,
+        CHECK (started == 14 - (deg + 2) && err <= 1e-10,
                "degree %d uneven %d: %d starts, error %.3g", deg, uneven,
                started, err);
       }
-  /* the rules */
+  /* the rules (steps of 0.1, the unknown at their ends) */
   memset (&o, 0, sizeof o);
   o.npr = 1;
   sym_pred_place (&o.pr[0], D, w);
-  double t = 1.0;
   for (int i = 0; i < D; i++)
     {
       base[i] = 1.0 + i;
       x[i] = base[i] + 0.5;   /* an error of the base that stays */
     }
-  pred_accept (&o, 0, t, x, 1, base);
-  CHECK (! sym_pred_start (&o.pr[0], t + 0.1, 1, base, v), "one error");
-  pred_accept (&o, 1, t + 0.1, x, 1, base);
-  CHECK (sym_pred_start (&o.pr[0], t + 0.2, 1, base, v) && v[0] == 1.5
-         && v[1] == 2.5, "two errors: [%g %g]", v[0], v[1]);
-  CHECK (sym_pred_start (&o.pr[0], t + 0.3, 1, base, v)
-         && ! sym_pred_start (&o.pr[0], t + 0.3 + 1e-9, 1, base, v)
-         && ! sym_pred_start (&o.pr[0], t + 0.05, 1, base, v)
-         && ! sym_pred_start (&o.pr[0], t, 1, base, v)
-         && ! sym_pred_start (&o.pr[0], t + 0.1, 1, base, v),
+  pred_accept (&o, 0, 0.1, 0.1, x, 1, base);
+  CHECK (! sym_pred_start (&o.pr[0], 0.1, 0.1, 1, base, v), "one error");
+  pred_accept (&o, 1, 0.1, 0.1, x, 1, base);
+  CHECK (sym_pred_start (&o.pr[0], 0.1, 0.1, 1, base, v)
+         && fabs (v[0] - 1.5) <= 1e-15 && fabs (v[1] - 2.5) <= 1e-15,
+         "two errors: [%g %g]", v[0], v[1]);
+  CHECK (sym_pred_start (&o.pr[0], 0.1, 0.15, 1, base, v)
+         && ! sym_pred_start (&o.pr[0], 0.1, 0.25, 1, base, v)
+         && ! sym_pred_start (&o.pr[0], 0.1, -0.05, 1, base, v)
+         && ! sym_pred_start (&o.pr[0], 0.1, -0.1, 1, base, v)
+         && ! sym_pred_start (&o.pr[0], 0.1, -0.2, 1, base, v),
          "up to twice the last spacing ahead, not back");
-  CHECK (! sym_pred_start (&o.pr[0], t + 0.2, 2, base, v), "another kind");
-  pred_accept (&o, 0, t + 0.2, x, 1, base);
+  CHECK (! sym_pred_start (&o.pr[0], 0.1, 0.1, 2, base, v), "another kind");
+  pred_accept (&o, 0, 0.1, 0.1, x, 1, base);
   CHECK (o.pr[0].n == 1, "a trial that did not continue: %d", o.pr[0].n);
-  pred_accept (&o, 1, t + 0.3, x, 2, base);
+  pred_accept (&o, 1, 0.1, 0.1, x, 2, base);
   CHECK (o.pr[0].n == 1 && o.pr[0].kind == 2, "a new kind: %d",
          o.pr[0].n);
   /* the base exact: its errors vanish, and the base alone is best */
-  pred_accept (&o, 1, t + 0.4, base, 2, base);
-  pred_accept (&o, 1, t + 0.5, base, 2, base);
-  pred_accept (&o, 1, t + 0.6, base, 2, base);
-  CHECK (o.pr[0].n == 4 && ! sym_pred_start (&o.pr[0], t + 0.7, 2, base, v),
+  for (int k = 0; k < 3; k++)
+    pred_accept (&o, 1, 0.1, 0.1, base, 2, base);
+  CHECK (o.pr[0].n == 4 && ! sym_pred_start (&o.pr[0], 0.1, 0.1, 2, base, v),
          "exact base: %d", o.pr[0].n);
   o.r.trial_ok = 1;   /* accepted without a value */
   sym_onestep_accept (&o);
   CHECK (o.pr[0].n == 0, "accepted without a value: %d", o.pr[0].n);
-  pred_accept (&o, 1, t + 0.8, x, 2, base);
+  pred_accept (&o, 1, 0.1, 0.1, x, 2, base);
   o.r.trial_ok = 0;   /* a failed trial is not accepted */
-  sym_pred_note (&o.pr[0], 1, t + 0.9, x, 2, base);
+  sym_pred_note (&o.pr[0], 1, 0.1, 0.1, x, 2, base);
   sym_onestep_accept (&o);
   CHECK (o.pr[0].n == 1, "failed trial: %d", o.pr[0].n);
   sym_onestep_reset (&o);
