@@ -284,8 +284,8 @@ sv_step (void *state, sym_system *sys, double t, double h, const double *y,
   else
     {
       double *x = s->x;
-      /* (1), started by an explicit half kick when f(t, y) is known, else
-         by the last step's first half kick */
+      /* (1), started from the history of p_{k+1/2} over an explicit half
+         kick (sym_kick_solve) */
       sym_kick kick = { d, &s->o.fc, &s->kp, sys, t, h, hh, tr->y0,
                         &s->o.pr[0] };
       if ((st = sym_kick_solve (&kick, &s->o.r, cont, PH (cu), x, s->scale,
