@@ -152,7 +152,7 @@ void sym_pred_place (sym_pred *p, int d, double *w);
 void sym_pred_note (sym_pred *p, int cont, double h, double c,
                     const double *x, int kind, const double *base);
 /* The start into x for the unknown at offset c from the start of a trial
-   step that continues the last accepted one (kind, base: as for
+   step of size h that continues the last accepted one (kind, base: as for
    sym_pred_note; x may be base) when the history holds at least two
    errors of a base of that kind, the unknown is ahead of the newest by
    at most twice the spacing of the last two, and an extrapolation
