@@ -269,7 +269,7 @@ lagrange_weights (int m, const double *ts, double t, double *w)
 }
 
 int
-sym_pred_start (const sym_pred *p, double h, double c, int kind,
+sym_pred_start (sym_pred *p, double h, double c, int kind,
                 const double *base, double *x)
 {
   const int n = p->n, d = p->d;
@@ -289,15 +289,26 @@ sym_pred_start (const sym_pred *p, double h, double c, int kind,
   const double ratio = (t - u[0]) / (u[0] - u[1]);
   if (! (ratio > 0.0 && ratio <= 2.0))
     return 0;
-  double w[SYM_PRED_MAX];
+  const int Lmax = n - 2 < SYM_PRED_MAX - 2 ? n - 2 : SYM_PRED_MAX - 2;
+  if (! (p->wn == n && p->wt == t
+         && memcmp (p->wu, u, (size_t) n * sizeof (double)) == 0))
+    {
+      for (int L = 0; L <= Lmax; L++)
+        {
+          lagrange_weights (L + 1, u + 1, u[0], p->wr[L]);
+          p->wf_ok[L] = 0;
+        }
+      memcpy (p->wu, u, (size_t) n * sizeof (double));
+      p->wn = n;
+      p->wt = t;
+    }
   /* L = -1: the base alone (no history term) */
   int best = -1;
   double beste = INFINITY;
-  for (int L = -1; L + 2 <= n && L <= SYM_PRED_MAX - 2; L++)
+  for (int L = -1; L <= Lmax; L++)
     {
       /* the newest error from the L + 1 before it */
-      if (L >= 0)
-        lagrange_weights (L + 1, u + 1, u[0], w);
+      const double *w = L >= 0 ? p->wr[L] : NULL;
       double e = 0.0;
       for (int i = 0; i < d; i++)
         {
@@ -314,7 +325,12 @@ sym_pred_start (const sym_pred *p, double h, double c, int kind,
     }
   if (best < 0)   /* the base alone: the caller's start */
     return 0;
-  lagrange_weights (best + 1, u, t, w);
+  const double *w = p->wf[best];
+  if (! p->wf_ok[best])
+    {
+      lagrange_weights (best + 1, u, t, p->wf[best]);
+      p->wf_ok[best] = 1;
+    }
   for (int i = 0; i < d; i++)
     {
       double v = 0.0;
