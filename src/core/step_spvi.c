@@ -1733,13 +1733,13 @@ spvi_lengthen (spvi_state *s, sym_system *sys, double t, double h,
 }
 
 static int
-spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
-           double *ynext, double *yerr)
+spvi_step (void *state, sym_system *sys, double t, double h, double tend,
+           const double *y, double *ynext, double *yerr)
 {
   spvi_state *s = state;
   const int d = s->d, n = s->n, m = s->m, nn = 2 * d;
   s->trial_ok = 0;
-  if (! (h != 0.0) || ! isfinite (h) || ! isfinite (t))
+  if (! (h != 0.0) || ! isfinite (h) || ! isfinite (t) || ! isfinite (tend))
     return SYM_EBADINPUT;
   if (yerr && ! s->have_hi)
     {
@@ -1808,7 +1808,7 @@ spvi_step (void *state, sym_system *sys, double t, double h, const double *y,
           (size_t) m * d * sizeof (double));
   tr->t = t;
   tr->h = h;
-  tr->tend = t + h;
+  tr->tend = tend;
   tr->has_dq = 0;
   tr->M = 0;
   tr->have_fe0 = tr->have_fe1 = tr->have_emis = tr->ends_bad = 0;

@@ -236,16 +236,16 @@ sv_trap_error (sv_state *s, sym_system *sys, int cont, double *yerr)
 }
 
 static int
-sv_step (void *state, sym_system *sys, double t, double h, const double *y,
-         double *ynext, double *yerr)
+sv_step (void *state, sym_system *sys, double t, double h, double tend,
+         const double *y, double *ynext, double *yerr)
 {
   sv_state *s = state;
   int st;
   if (! s || ! sys || ! y || ! ynext || ! isfinite (t) || ! isfinite (h)
-      || h == 0.0)
+      || ! isfinite (tend) || h == 0.0)
     return SYM_EBADINPUT;
   const int d = s->d;
-  const int cont = sym_recs_begin (&s->o.r, t, h, y);
+  const int cont = sym_recs_begin (&s->o.r, t, h, tend, y);
   sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
   const double *q0 = tr->y0, *p0 = tr->y0 + d;
   double *q1 = tr->y1, *p1 = tr->y1 + d, *ph = PH (tr), *fpe = FPE (tr, d);

@@ -73,7 +73,8 @@ sym_recs_place (sym_recs *r, int n, int naux, double *w)
 }
 
 int
-sym_recs_begin (sym_recs *r, double t, double h, const double *y)
+sym_recs_begin (sym_recs *r, double t, double h, double tend,
+                const double *y)
 {
   const int n = r->n;
   r->trial_ok = 0;
@@ -92,7 +93,7 @@ sym_recs_begin (sym_recs *r, double t, double h, const double *y)
     }
   tr->t = t;
   tr->h = h;
-  tr->tend = t + h;
+  tr->tend = tend;
   tr->have_f1 = 0;
   return cont;
 }

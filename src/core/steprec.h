@@ -69,10 +69,12 @@ void *sym_onestep_new (const sym_system *sys, size_t size, int *status);
 /* doubles the records need; place them in w */
 size_t sym_recs_len (int n, int naux);
 void sym_recs_place (sym_recs *r, int n, int naux, double *w);
-/* Start the trial step (t, h) from y: f(t, y) is reused from an earlier
-   attempt from the same point, or from the end of the last accepted step.
-   Returns whether the last accepted step ends where this one starts. */
-int sym_recs_begin (sym_recs *r, double t, double h, const double *y);
+/* Start the trial step (t, h), ending at the time tend, from y: f(t, y)
+   is reused from an earlier attempt from the same point, or from the end
+   of the last accepted step.  Returns whether the last accepted step ends
+   where this one starts. */
+int sym_recs_begin (sym_recs *r, double t, double h, double tend,
+                    const double *y);
 /* f at the trial step's start, evaluated if not known */
 int sym_recs_f0 (sym_recs *r, sym_system *sys);
 /* Finish the trial step whose end is in trial->y1: f at both ends when
@@ -123,12 +125,12 @@ typedef struct {
    10.60) with 16, 6.56 and 8.05 (11.35 and 13.57) from the explicit
    starts.  Dividing by h^2 (an error of the explicit start is O(h^2))
    keeps them smooth where h changes: adaptive odeSV at RelTol = AbsTol =
-   1e-7 on that H takes 13% fewer calls than without.  Far from t = 0 a
-   fixed step (the representable increment of t, driver.c) varies by the
-   round-off of t, and the errors with it (SE's explicit start has terms
-   in h h_prev): odeSE at h = 0.01 then takes 2.28, 2.56, 3.00 calls per
-   step from t0 = 1e4, 1e6, 1e8 instead of 2.00 (4.0 from the explicit
-   start alone). */
+   1e-7 on that H takes 13% fewer calls than without.  A fixed step is h
+   itself at any t (driver.c): when it was the difference of the rounded
+   ends t0 + k h, which varies by the round-off of t, the errors varied
+   with it (SE's explicit start has terms in h h_prev), and odeSE at
+   h = 0.01 took 2.28, 2.56, 3.00 calls per step from t0 = 1e4, 1e6, 1e8
+   instead of 2.00. */
 #define SYM_PRED_MAX 16
 typedef struct {
   int d, n;                /* errors held, newest first */

@@ -303,9 +303,13 @@ typedef struct {
   void *(*alloc) (const sym_system *sys, const sym_method_opts *opts,
                   int *status);
   /* Step from (t, y) by h (h < 0 runs backwards) into ynext; if yerr is not
-     NULL, also an estimate of the local error (n components). */
+     NULL, also an estimate of the local error (n components).  tend is
+     the time the step's end is known by (its dense output and the next
+     step's start), t + h up to the round-off of t: the driver's fixed
+     steps take the same h every step and end at t0 + k h rounded once
+     (driver.c). */
   int (*step) (void *state, sym_system *sys, double t, double h,
-               const double *y, double *ynext, double *yerr);
+               double tend, const double *y, double *ynext, double *yerr);
   void (*accept) (void *state);
   /* y(t) on the last accepted step, t within it: its own continuous output */
   int (*dense) (void *state, sym_system *sys, double t, double *y);

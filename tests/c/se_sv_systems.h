@@ -266,7 +266,7 @@ run_fixed (const sym_stepper_type *T, sym_system *sys,
     {
       /* times as driver.c forms them in fixed-step mode */
       double tnew = t0 + h * (double) (k + 1);
-      st = T->step (S, sys, t, tnew - t, yc, yn, with_err ? ye : NULL);
+      st = T->step (S, sys, t, tnew - t, tnew, yc, yn, with_err ? ye : NULL);
       if (st)
         break;
       T->accept (S);

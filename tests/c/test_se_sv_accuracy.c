@@ -122,7 +122,8 @@ test_naive (void)
           memcpy (ynaive, cases[c].y0, sizeof y);
           for (long k = 0; k < N; k++)
             {
-              st = stepper (sv)->step (S, &sys, t, h, y, yn, err ? ye : NULL);
+              st = stepper (sv)->step (S, &sys, t, h, t + h, y, yn,
+                                       err ? ye : NULL);
               if (st)
                 break;
               stepper (sv)->accept (S);
@@ -215,11 +216,11 @@ est_step (int sv, sym_system *sys, const sym_method_opts *o, int hist,
     {
       double ys[4];
       memcpy (ys, y0, sizeof ys);
-      st = stepper (sv)->step (S, sys, t - 0.7 * h, 0.7 * h, ys, y0, ye);
+      st = stepper (sv)->step (S, sys, t - 0.7 * h, 0.7 * h, t, ys, y0, ye);
       stepper (sv)->accept (S);
     }
   if (! st)
-    st = stepper (sv)->step (S, sys, t, h, y0, y, ye);
+    st = stepper (sv)->step (S, sys, t, h, t + h, y0, y, ye);
   stepper (sv)->free (S);
   return st;
 }
@@ -300,9 +301,10 @@ test_dense (void)
           CHECK (stepper (sv)->dense (S, &sys, 0.0, yd) == SYM_EBADINPUT,
                  "dense before any step");
           const double h = 0.1, t0 = 0.7;
-          st = stepper (sv)->step (S, &sys, t0, h, y0, y1, NULL);
+          st = stepper (sv)->step (S, &sys, t0, h, t0 + h, y0, y1, NULL);
           stepper (sv)->accept (S);
-          st |= stepper (sv)->step (S, &sys, t0 + h, h, y1, y2, NULL);
+          st |= stepper (sv)->step (S, &sys, t0 + h, h, t0 + 2 * h, y1, y2,
+                                    NULL);
           CHECK (st == 0, "status");
           /* dense refers to the last ACCEPTED step: [t0, t0+h] */
           stepper (sv)->dense (S, &sys, t0, yd);
@@ -349,7 +351,7 @@ test_dense (void)
           double h = 0.1 / (1 << j), y0[2] = { 0.5, 0.8 }, y1[2], yd[2],
                  ya[2];
           void *S = stepper (sv)->alloc (&sys, &o, &st);
-          stepper (sv)->step (S, &sys, 0, h, y0, y1, NULL);
+          stepper (sv)->step (S, &sys, 0, h, h, y0, y1, NULL);
           stepper (sv)->accept (S);
           stepper (sv)->dense (S, &sys, 0.5 * h, yd);
           rk4 (&P, 0, h / 200, 100, y0, ya);

@@ -24,7 +24,7 @@ one_step (int sv, sym_system *sys, const sym_method_opts *o, double t,
   void *S = stepper (sv)->alloc (sys, o, &st);
   if (! S)
     return st;
-  st = stepper (sv)->step (S, sys, t, h, y, y1, NULL);
+  st = stepper (sv)->step (S, sys, t, h, t + h, y, y1, NULL);
   stepper (sv)->free (S);
   return st;
 }
@@ -134,7 +134,7 @@ test_energy (void)
       double E0 = tp_energy (&P, y), emax = 0, efirst = 0, elast = 0;
       for (long k = 0; k < N && ! st; k++)
         {
-          st = sym_step_sv->step (S, &sys, t, h, y, yn, NULL);
+          st = sym_step_sv->step (S, &sys, t, h, t + h, y, yn, NULL);
           sym_step_sv->accept (S);
           t += h;
           memcpy (y, yn, sizeof y);
@@ -174,7 +174,7 @@ test_kepler (void)
         double lmax = 0, emax = 0;
         for (long k = 0; k < N && ! st; k++)
           {
-            st = stepper (sv)->step (S, &sys, t, h, y, yn, NULL);
+            st = stepper (sv)->step (S, &sys, t, h, t + h, y, yn, NULL);
             stepper (sv)->accept (S);
             t += h;
             memcpy (y, yn, sizeof y);
@@ -228,9 +228,10 @@ test_reversible (void)
           {
             double hk = k < N ? h : -h;
             double tn = 0.1 + (k < N ? (k + 1) : (2 * N - k - 1)) * h;
-            st = sym_step_sv->step (S, &sys, t, hk, y, yn, err ? ye : NULL);
+            st = sym_step_sv->step (S, &sys, t, hk, t + hk, y, yn,
+                                    err ? ye : NULL);
             sym_step_sv->accept (S);
-            st |= sym_step_sv->step (S2, &sys, tn, -hk, yn, yb, NULL);
+            st |= sym_step_sv->step (S2, &sys, tn, -hk, tn - hk, yn, yb, NULL);
             step_dev = fmax (step_dev, maxdiff (n, yb, y) / fmax (1, maxabs (n, y)));
             t = tn;
             memcpy (y, yn, sizeof y);

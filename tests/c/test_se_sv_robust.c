@@ -127,7 +127,7 @@ test_calls_adaptive (void)
       srand (7);
       while (accepted < 500 && ! st)
         {
-          st = stepper (sv)->step (S, &sys, t, h, y, yn, ye);
+          st = stepper (sv)->step (S, &sys, t, h, t + h, y, yn, ye);
           attempts++;
           fresh += accepted == 0;
           if (rand () % 4 == 0)   /* reject: retry with a smaller h */
@@ -249,15 +249,15 @@ test_lu_reuse (void)
       double y[2] = { 1, 0 }, yn[2], t = 0, h = 0.01;
       for (int k = 0; k < 100; k++)
         {
-          st |= stepper (sv)->step (S, &sys, t, h, y, yn, NULL);
+          st |= stepper (sv)->step (S, &sys, t, h, t + h, y, yn, NULL);
           stepper (sv)->accept (S);
           t += h;
           memcpy (y, yn, sizeof y);
         }
       long lu100 = sys.cnt.nlu;
-      st |= stepper (sv)->step (S, &sys, t, 1.1 * h, y, yn, NULL);
+      st |= stepper (sv)->step (S, &sys, t, 1.1 * h, t + 1.1 * h, y, yn, NULL);
       long lu_small = sys.cnt.nlu - lu100;
-      st |= stepper (sv)->step (S, &sys, t, 1.5 * h, y, yn, NULL);
+      st |= stepper (sv)->step (S, &sys, t, 1.5 * h, t + 1.5 * h, y, yn, NULL);
       long lu_big = sys.cnt.nlu - lu100 - lu_small;
       CHECK (st == 0, "status");
       printf ("LU reuse %s (damped oscillator): %ld factorizations in 100 "
@@ -314,7 +314,8 @@ three_steps (const fcase *fc, tprob *P, sym_system *sys, double *y,
   *fail_step = -1;
   for (int k = 0; k < 3; k++)
     {
-      st = stepper (fc->sv)->step (S, sys, t, h, y, yn, fc->err ? ye : NULL);
+      st = stepper (fc->sv)->step (S, sys, t, h, t + h, y, yn,
+                                   fc->err ? ye : NULL);
       if (st)
         {
           *fail_status = st;
@@ -326,7 +327,7 @@ three_steps (const fcase *fc, tprob *P, sym_system *sys, double *y,
               CHECK (sd == 0 && maxdiff (n, yd, y) == 0, "dense after fail");
             }
           P->fail_at = P->jfail_at = 0;   /* the retry succeeds */
-          st = stepper (fc->sv)->step (S, sys, t, h, y, yn,
+          st = stepper (fc->sv)->step (S, sys, t, h, t + h, y, yn,
                                        fc->err ? ye : NULL);
           if (st)
             break;
@@ -462,11 +463,11 @@ test_newton_fail (void)
       int st;
       void *S = stepper (sv)->alloc (&sys, &o, &st);
       double y[2] = { 2.5, 3.0 }, yn[2], ye[2], yref[2];
-      st = stepper (sv)->step (S, &sys, 0, 5.0, y, yn, ye);
+      st = stepper (sv)->step (S, &sys, 0, 5.0, 5.0, y, yn, ye);
       printf ("Newton at h = 5 on P_H1 from (2.5, 3) %s: status %d (%s)\n",
               mname (sv), st, sym_status_name (st));
       CHECK (st == SYM_NEWTON_FAIL, "%s: %d", mname (sv), st);
-      st = stepper (sv)->step (S, &sys, 0, 0.001, y, yn, ye);
+      st = stepper (sv)->step (S, &sys, 0, 0.001, 0.001, y, yn, ye);
       CHECK (st == 0, "after the failure: %d", st);
       (sv ? naive_sv : naive_se) (&P, 0, 0.001, y, yref);
       CHECK (maxdiff (2, yn, yref) < 1e-13, "after the failure: %g",
@@ -519,10 +520,10 @@ test_alloc_failure (void)
       S = stepper (sv)->alloc (&sys, &o, &st);
       alloc_fail_at = alloc_count + 1;
       double y[4] = { 0.3, -0.4, 0.5, 0.2 }, yn[4], ye[4];
-      st = stepper (sv)->step (S, &sys, 0, 0.05, y, yn, ye);
+      st = stepper (sv)->step (S, &sys, 0, 0.05, 0.05, y, yn, ye);
       CHECK (st == SYM_ENOMEM, "step without memory: %d", st);
       alloc_fail_at = 0;
-      st = stepper (sv)->step (S, &sys, 0, 0.05, y, yn, ye);
+      st = stepper (sv)->step (S, &sys, 0, 0.05, 0.05, y, yn, ye);
       CHECK (st == 0, "step after memory came back: %d", st);
       stepper (sv)->free (S);
       sym_set_allocator (NULL, NULL);
@@ -588,7 +589,7 @@ test_separable_memory (void)
                step of the chain from q = 1, p = 0 */
             for (int i = 0; i < d; i++)
               y[i] = 1.0, y[d + i] = 0.0;
-            st = stepper (sv)->step (S, &sys, 0, 0.01, y, yn, NULL);
+            st = stepper (sv)->step (S, &sys, 0, 0.01, 0.01, y, yn, NULL);
             CHECK (st == 0 && fabs (yn[0] - cos (0.01)) < 1e-4
                    && fabs (yn[d] + sin (0.01)) < 1e-4,
                    "%s separable step at d = %d: %d %g %g", mname (sv), d,
@@ -631,12 +632,14 @@ test_bad_input_and_reset (void)
       void *S = stepper (sv)->alloc (&sys, NULL, &st);   /* default opts */
       CHECK (S != NULL && st == 0, "NULL opts");
       double y[2] = { 1.2, 0.3 }, yn[2];
-      CHECK (stepper (sv)->step (S, &sys, 0, 0.0, y, yn, NULL)
+      CHECK (stepper (sv)->step (S, &sys, 0, 0.0, 0.0, y, yn, NULL)
              == SYM_EBADINPUT, "h = 0");
-      CHECK (stepper (sv)->step (S, &sys, 0, NAN, y, yn, NULL)
+      CHECK (stepper (sv)->step (S, &sys, 0, NAN, NAN, y, yn, NULL)
              == SYM_EBADINPUT, "h = NaN");
-      CHECK (stepper (sv)->step (S, &sys, INFINITY, 0.1, y, yn, NULL)
-             == SYM_EBADINPUT, "t = Inf");
+      CHECK (stepper (sv)->step (S, &sys, INFINITY, 0.1, INFINITY, y, yn,
+                                 NULL) == SYM_EBADINPUT, "t = Inf");
+      CHECK (stepper (sv)->step (S, &sys, 0, 0.1, NAN, y, yn, NULL)
+             == SYM_EBADINPUT, "tend = NaN");
       stepper (sv)->free (S);
       stepper (sv)->free (NULL);
 
@@ -644,7 +647,7 @@ test_bad_input_and_reset (void)
       S = stepper (sv)->alloc (&sys, &o, &st);
       P.fail_at = P.calls + 1;
       P.fail_mode = 2;
-      CHECK (stepper (sv)->step (S, &sys, 0, 0.1, y, yn, NULL)
+      CHECK (stepper (sv)->step (S, &sys, 0, 0.1, 0.1, y, yn, NULL)
              == SYM_RECOVERABLE, "injected failure");
       stepper (sv)->accept (S);
       CHECK (stepper (sv)->dense (S, &sys, 0.05, yn) == SYM_EBADINPUT,
@@ -656,16 +659,16 @@ test_bad_input_and_reset (void)
          the same result */
       S = stepper (sv)->alloc (&sys, &o, &st);
       double y1[2], y2[2], y2b[2];
-      stepper (sv)->step (S, &sys, 0, 0.1, y, y1, NULL);
+      stepper (sv)->step (S, &sys, 0, 0.1, 0.1, y, y1, NULL);
       stepper (sv)->accept (S);
       long c0 = sys.cnt.nrhs;
-      stepper (sv)->step (S, &sys, 0.1, 0.1, y1, y2, NULL);
+      stepper (sv)->step (S, &sys, 0.1, 0.1, 0.1 + 0.1, y1, y2, NULL);
       long c_cont = sys.cnt.nrhs - c0;
       stepper (sv)->reset (S);
       CHECK (stepper (sv)->dense (S, &sys, 0.05, yn) == SYM_EBADINPUT,
              "dense after reset");
       c0 = sys.cnt.nrhs;
-      stepper (sv)->step (S, &sys, 0.1, 0.1, y1, y2b, NULL);
+      stepper (sv)->step (S, &sys, 0.1, 0.1, 0.1 + 0.1, y1, y2b, NULL);
       long c_reset = sys.cnt.nrhs - c0;
       CHECK (maxdiff (2, y2, y2b) == 0, "after reset: %g",
              maxdiff (2, y2, y2b));

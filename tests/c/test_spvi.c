@@ -75,10 +75,12 @@ test_alloc (void)
   double y[2];
   CHECK (T->dense (s, &sys, 0.0, y) == SYM_EBADINPUT, "dense, no step");
   double y0[2] = { 1, 1 }, y1[2];
-  CHECK (T->step (s, &sys, 0.0, 0.0, y0, y1, NULL) == SYM_EBADINPUT,
+  CHECK (T->step (s, &sys, 0.0, 0.0, 0.0, y0, y1, NULL) == SYM_EBADINPUT,
          "h = 0");
-  CHECK (T->step (s, &sys, 0.0, NAN, y0, y1, NULL) == SYM_EBADINPUT,
+  CHECK (T->step (s, &sys, 0.0, NAN, NAN, y0, y1, NULL) == SYM_EBADINPUT,
          "h NaN");
+  CHECK (T->step (s, &sys, 0.0, 0.1, INFINITY, y0, y1, NULL)
+         == SYM_EBADINPUT, "tend Inf");
   T->free (s);
 }
 
@@ -140,10 +142,10 @@ test_alloc_failures (void)
   fail_alloc_at = alloc_count + 1;
   double y[4], yn[4], ye[4];
   ts_kep_y0 (0.6, y);
-  int st = T->step (s, &sys, 0.0, 0.05, y, yn, ye);
+  int st = T->step (s, &sys, 0.0, 0.05, 0.05, y, yn, ye);
   CHECK (st == SYM_ENOMEM, "lazy companion: %d", st);
   fail_alloc_at = 0;
-  st = T->step (s, &sys, 0.0, 0.05, y, yn, ye);
+  st = T->step (s, &sys, 0.0, 0.05, 0.05, y, yn, ye);
   CHECK (st == 0, "then fine: %d", st);
   T->free (s);
   sym_set_allocator (NULL, NULL);
@@ -276,7 +278,7 @@ compare_with (void (*ref) (sym_rhs_fn, int, double, const double *,
   /* per step from the same point, and a trajectory of a few steps */
   for (int k = 0; k < 8; k++)
     {
-      st = T->step (s, &sys, k * h, h, y, yn, NULL);
+      st = T->step (s, &sys, k * h, h, k * h + h, y, yn, NULL);
       T->accept (s);
       double one[8];
       ref (f, nn, h, y, one);
@@ -332,9 +334,9 @@ symplecticity (int n, int m, int d, sym_rhs_fn f, sym_jac_fn jac,
       yp[c] += del;
       ym[c] -= del;
       T->reset (s);
-      st |= T->step (s, &sys, 0.0, h, yp, y1p, NULL);
+      st |= T->step (s, &sys, 0.0, h, h, yp, y1p, NULL);
       T->reset (s);
-      st |= T->step (s, &sys, 0.0, h, ym, y1m, NULL);
+      st |= T->step (s, &sys, 0.0, h, h, ym, y1m, NULL);
       for (int r = 0; r < nn; r++)
         M[r + c * nn] = (y1p[r] - y1m[r]) / (yp[c] - ym[c]);
     }
@@ -601,7 +603,7 @@ test_rhs_jac (void)
   ts_kep_y0 (0.6, yc);
   both_calls = 0;
   both_nan_at = 2;
-  st = T->step (s3, &sn, 0.0, h, yc, ya, NULL);
+  st = T->step (s3, &sn, 0.0, h, h, yc, ya, NULL);
   CHECK (st == SYM_NONFINITE && sn.fail_t > 0.0 && sn.fail_t < h,
          "NaN in the combined Df: %d (%s) at t = %g", st,
          sym_status_name (st), sn.fail_t);
@@ -634,7 +636,7 @@ test_error_estimate (void)
           void *s = T->alloc (&sys, &o, &st);
           order = T->err_order (s);
           double y0[2] = { 1, 1 }, y1[2], ye[2], yx[2];
-          st = T->step (s, &sys, 0.0, h, y0, y1, ye);
+          st = T->step (s, &sys, 0.0, h, h, y0, y1, ye);
           CHECK (st == 0, "step with yerr: %d", st);
           ts_pend_exact (1.0, 1.0, h, yx);
           /* with an estimate the step advances with the companion; the
@@ -700,8 +702,8 @@ test_adaptive_tolerances (void)
               T->reset (sa);
               T->reset (sb);
             }
-          int s1 = T->step (sa, &sl, t, h, y, ya, ea);
-          int s2 = T->step (sb, &st_, t, h, y, yb, eb);
+          int s1 = T->step (sa, &sl, t, h, t + h, y, ya, ea);
+          int s2 = T->step (sb, &st_, t, h, t + h, y, yb, eb);
           if (s1 || s2)
             {
               bad = 1;
@@ -822,7 +824,7 @@ dense_osc (int n, int m, double h, double *ends, long *calls)
   for (int step = 0; step < 10; step++)
     {
       double ys[2] = { y[0], y[1] };
-      st |= T->step (s, &sys, t, h, y, yn, NULL);
+      st |= T->step (s, &sys, t, h, t + h, y, yn, NULL);
       T->accept (s);
       const long before = sys.cnt.nrhs;
       T->dense (s, &sys, t, yd);
@@ -894,7 +896,7 @@ test_dense (void)
   ts_pend_exact (1.0, 1.0, t, y);
   for (int step = 0; step < 20; step++)
     {
-      st |= T->step (s, &sys, t, h, y, yn, NULL);
+      st |= T->step (s, &sys, t, h, t + h, y, yn, NULL);
       T->accept (s);
       for (int i = 0; i <= 8; i++)
         {
@@ -925,9 +927,9 @@ test_symmetric_and_predictor (void)
   int st;
   void *s = T->alloc (&sys, &o, &st);
   double y0[4] = { 0.3, -0.2, 0.4, 0.5 }, y1[4], y2[4];
-  st = T->step (s, &sys, 0.0, 0.3, y0, y1, NULL);
+  st = T->step (s, &sys, 0.0, 0.3, 0.3, y0, y1, NULL);
   T->accept (s);
-  st |= T->step (s, &sys, 0.3, -0.3, y1, y2, NULL);
+  st |= T->step (s, &sys, 0.3, -0.3, 0.0, y1, y2, NULL);
   CHECK (st == 0 && ts_maxdiff (4, y0, y2) < 1e-14, "back and forth: %.3g",
          ts_maxdiff (4, y0, y2));
   T->free (s);
@@ -944,12 +946,13 @@ test_symmetric_and_predictor (void)
   int bad = 0;
   for (int k = 0; k < 200; k++)
     {
-      bad |= T->step (a, &s1, k * h, h, ya, yn, NULL);
+      bad |= T->step (a, &s1, k * h, h, k * h + h, ya, yn, NULL);
       T->accept (a);
       memcpy (ya, yn, sizeof yn);
       /* an autonomous system: starting the step a hair later than the
          last one ended changes nothing but the predictor (off) */
-      bad |= T->step (b, &s2, k * h * (1 + 1e-8), h, yb, yn, NULL);
+      bad |= T->step (b, &s2, k * h * (1 + 1e-8), h, k * h * (1 + 1e-8) + h,
+                      yb, yn, NULL);
       T->accept (b);
       memcpy (yb, yn, sizeof yn);
     }
@@ -1007,14 +1010,15 @@ one_step_with_failure (long fail_at, int mode, long jac_fail_at,
       ts_kep_y0 (0.6, cy);
       st = ts_run_fixed (T, c, &cs, 0.0, h, prior_steps, cy);
       cu.calls = 0;
-      st |= T->step (c, &cs, prior_steps * h, h, cy, cyn,
+      st |= T->step (c, &cs, prior_steps * h, h, prior_steps * h + h, cy, cyn,
                      want_err ? cye : NULL);
       fail_at = cu.calls;
       T->free (c);
     }
   u.fail_at = fail_at;
   if (! st)
-    st = T->step (s, &sys, prior_steps * h, h, y, yn, want_err ? ye : NULL);
+    st = T->step (s, &sys, prior_steps * h, h, prior_steps * h + h, y, yn,
+                  want_err ? ye : NULL);
   /* the step is not accepted: dense output still is the last step's */
   if (prior_steps)
     {
@@ -1023,7 +1027,7 @@ one_step_with_failure (long fail_at, int mode, long jac_fail_at,
     }
   /* and the stepper works on */
   u.fail_at = u.jac_fail_at = 0;
-  int st2 = T->step (s, &sys, prior_steps * h, h, y, yn,
+  int st2 = T->step (s, &sys, prior_steps * h, h, prior_steps * h + h, y, yn,
                      want_err ? ye : NULL);
   CHECK (st2 == 0, "after the failure: %d", st2);
   *out = sys;
@@ -1098,10 +1102,10 @@ test_failures (void)
   void *s = T->alloc (&ks, &o, &st);
   double y[4], yn[4], ye[4];
   ts_kep_y0 (0.6, y);
-  st = T->step (s, &ks, 0.0, 0.1, y, yn, ye);
+  st = T->step (s, &ks, 0.0, 0.1, 0.1, y, yn, ye);
   CHECK (st == SYM_NEWTON_FAIL && ks.cnt.nnewton_fail > 0,
          "max_newton 1: %d", st);
-  st = T->step (s, &ks, 0.0, 0.1, y, yn, NULL);
+  st = T->step (s, &ks, 0.0, 0.1, 0.1, y, yn, NULL);
   CHECK (st == 0, "max_newton 1, fixed step: %d", st);
   T->free (s);
   /* ... and a step past a blow-up (q'' = q^2 from q = p = 1 blows up near
@@ -1110,10 +1114,10 @@ test_failures (void)
   o = ts_opts (4, 3);
   s = T->alloc (&bs, &o, &st);
   double yb[2] = { 1.0, 1.0 }, ybn[2];
-  st = T->step (s, &bs, 0.0, 4.0, yb, ybn, NULL);
+  st = T->step (s, &bs, 0.0, 4.0, 4.0, yb, ybn, NULL);
   CHECK (st > 0, "step past the blow-up: %d (%s), y = %g %g", st,
          sym_status_name (st), ybn[0], ybn[1]);
-  st = T->step (s, &bs, 0.0, 0.01, yb, ybn, NULL);
+  st = T->step (s, &bs, 0.0, 0.01, 0.01, yb, ybn, NULL);
   CHECK (st == 0, "then a small one: %d", st);
   T->free (s);
 }

@@ -144,7 +144,8 @@ test_predictor_exact (void)
   const double hs[] = { 0.2, 0.2, 0.35, 0.1, 0.25 };
   for (int k = 0; k < 5; k++)
     {
-      st |= test_spvi_internal_copy->step (s, &sys, t, hs[k], y, yn, NULL);
+      st |= test_spvi_internal_copy->step (s, &sys, t, hs[k], t + hs[k], y, yn,
+                                           NULL);
       if (k > 0)
         worst_pred = fmax (worst_pred, ts_maxdiff (s->lo.N, s->lo.x0,
                                                    s->lo.x));

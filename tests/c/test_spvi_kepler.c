@@ -63,7 +63,7 @@ long_run (sym_system *sys, int newmat, const char *label, double *cost)
   for (long k = 0; k < nsteps; k++)
     {
       double tn = h * (double) (k + 1);
-      st = sym_step_spvi->step (s, sys, t, tn - t, y, yn, NULL);
+      st = sym_step_spvi->step (s, sys, t, h, tn, y, yn, NULL);
       if (st)
         break;
       sym_step_spvi->accept (s);
@@ -132,9 +132,9 @@ converged (sym_system *sc, int newmat, sym_system *sr)
   for (long k = 0; k < nc && ! stc; k++)
     {
       double t0 = h * (double) k, t1 = h * (double) (k + 1);
-      stc = sym_step_spvi->step (cs, sc, t0, t1 - t0, yc, ycn, NULL);
+      stc = sym_step_spvi->step (cs, sc, t0, h, t1, yc, ycn, NULL);
       sym_step_spvi->reset (rs);
-      stc |= sym_step_spvi->step (rs, sr, t0, t1 - t0, yc, yr, NULL);
+      stc |= sym_step_spvi->step (rs, sr, t0, h, t1, yc, yr, NULL);
       sym_step_spvi->accept (cs);
       double dif = 0.0, ymax = 0.0;
       for (int i = 0; i < 4; i++)
@@ -178,9 +178,9 @@ energy_bias (sym_system *sc, int newmat, double *itps)
   double y[2] = { 2.5, 0.3 }, yn[2], yr[2], sum = 0.0;
   for (long k = 0; k < ns && ! st; k++)
     {
-      st = sym_step_spvi->step (cs, sc, h * k, h, y, yn, NULL);
+      st = sym_step_spvi->step (cs, sc, h * k, h, h * k + h, y, yn, NULL);
       sym_step_spvi->reset (rs);
-      st |= sym_step_spvi->step (rs, &sr, h * k, h, y, yr, NULL);
+      st |= sym_step_spvi->step (rs, &sr, h * k, h, h * k + h, y, yr, NULL);
       sym_step_spvi->accept (cs);
       sum += sin (yr[0]) * (yn[0] - yr[0]) + yr[1] * (yn[1] - yr[1]);
       memcpy (y, yn, sizeof y);

@@ -297,7 +297,7 @@ ts_run_fixed (const sym_stepper_type *type, void *state, sym_system *sys,
   for (long k = 0; k < nsteps; k++)
     {
       double tn = t0 + h * (double) (k + 1);
-      int st = type->step (state, sys, t, tn - t, y, yn, NULL);
+      int st = type->step (state, sys, t, h, tn, y, yn, NULL);
       if (st)
         return st;
       type->accept (state);
