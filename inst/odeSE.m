@@ -48,11 +48,10 @@
 ## that would have predicted the newest of them best.  On a non-separable
 ## H at a fixed step this makes a step cost about as many evaluations of
 ## @var{fcn} as the explicit separable one (2.00 per step in
-## @file{tests/test_se_sv.m}, 4.0 from the explicit start alone; far from
-## t = 0, where the steps vary by the round-off of t, more: 2.28 from t =
-## 1e4, 3.00 from t = 1e8).  A
-## solve from there that fails (Newton, or @var{fcn} NaN or asking for a
-## smaller step) is tried again from the explicit start.
+## @file{tests/test_se_sv.m}, 4.0 from the explicit start alone; from
+## t0 = 1e8 the same).  A solve from there that fails (Newton, or
+## @var{fcn} NaN or asking for a smaller step) is tried again from the
+## explicit start.
 ##
 ## @strong{Arguments} are those of @code{ode45}: @var{tspan} = [t0, tf]
 ## returns a row at every step; with more than two (strictly monotonic)
@@ -81,7 +80,10 @@
 ## @item TimeStepSize, TimeStepNumber
 ## Fixed step h (the last step ends exactly on tf) or a fixed number of
 ## steps: no error control; the geometric guarantees hold in this mode.
-## Without them the step is adaptive.
+## Every step is h itself, the same map at any t, and ends at t0 + k h
+## rounded once (the rows' times), so a run from t0 = 1e8 takes the same
+## steps as one from 0; only a last step that h does not fit ends on tf
+## with what is left of the span.  Without them the step is adaptive.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
 ## Adaptive mode, scaled as in @code{ode45} (defaults 1e-3, 1e-6, off,
 ## automatic, |tf-t0|/10; MaxStep = Inf: no cap).  The local error

@@ -91,6 +91,8 @@
 ## @item TimeStepSize, TimeStepNumber
 ## Fixed step (the last step ends exactly on tf) or a fixed number of
 ## steps: no error control; the geometric guarantees hold in this mode.
+## Every step is h itself and ends at t0 + k h rounded once, as in
+## @code{odeSE}.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
 ## Adaptive mode (the default), scaled as in @code{ode45}.  The local error
 ## is estimated, as in the original method, by a companion solution on the
