@@ -42,7 +42,7 @@
 ## (the errors of the explicit starts p(k) + (h/2) f_p(t(k), q(k),
 ## p(k-1/2)), exact for a separable H, and q(k) + h f_q(t(k), q(k),
 ## p(k+1/2)), extrapolated): on the non-separable H of
-## @file{tests/test_se_sv.m} at h = 0.01, 3.98 evaluations of @var{fcn}
+## @file{tests/test_se_sv.m} at h = 0.01, 3.96 evaluations of @var{fcn}
 ## per step (8.0 from the explicit starts alone).
 ##
 ## Arguments, outputs and options are those of @code{odeSE} (see

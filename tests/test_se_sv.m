@@ -174,7 +174,7 @@
 %!test
 %! ## Newton's start from the history of the unknowns: at h = 0.01 the
 %! ## fixed steps of this non-separable H cost about as many calls as the
-%! ## explicit separable ones (odeSE 2.00 with the Hessian, odeSV 3.98),
+%! ## explicit separable ones (odeSE 2.00 with the Hessian, odeSV 3.96),
 %! ## and the angular momentum stays at round-off over 20000 steps (8e-15;
 %! ## from the explicit start alone: 4.0 and 8.0 calls per step, and L
 %! ## drifted linearly, by 5.1e-14 and 5.4e-14 here)
