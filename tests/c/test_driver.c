@@ -53,13 +53,18 @@ ex_alloc (const sym_system *s, const sym_method_opts *o, int *st)
   return e;
 }
 
+/* the least and the largest h the exact stepper was given */
+static double h_least = INFINITY, h_most = 0;
+
 static int
-ex_step (void *st, sym_system *sys, double t, double h, const double *y,
-         double *yn, double *yerr)
+ex_step (void *st, sym_system *sys, double t, double h, double tend,
+         const double *y, double *yn, double *yerr)
 {
   exact_state *e = st;
   double dy[2];
-  int s = sym_rhs (sys, t + h, y, dy);   /* to count calls and see NaNs */
+  int s = sym_rhs (sys, tend, y, dy);   /* to count calls and see NaNs */
+  h_least = fmin (h_least, h);
+  h_most = fmax (h_most, h);
   if (s)
     return s;
   yn[0] = cos (h) * y[0] + sin (h) * y[1];
@@ -110,8 +115,8 @@ typedef struct {
 } mid_state;
 
 static int
-mid_step (void *st, sym_system *sys, double t, double h, const double *y,
-          double *yn, double *yerr)
+mid_step (void *st, sym_system *sys, double t, double h, double tend,
+          const double *y, double *yn, double *yerr)
 {
   mid_state *m = st;
   double f0[2], ym[2], fm[2], f1[2];
@@ -124,7 +129,7 @@ mid_step (void *st, sym_system *sys, double t, double h, const double *y,
     return s;
   for (int i = 0; i < 2; i++)
     yn[i] = y[i] + h * fm[i];
-  if ((s = sym_rhs (sys, t + h, yn, f1)))
+  if ((s = sym_rhs (sys, tend, yn, f1)))
     return s;
   if (yerr)
     for (int i = 0; i < 2; i++)
@@ -388,6 +393,37 @@ main (void)
   CHECK_CLOSE (S.y[S.nrows - 1][0], cos (10.0), 1e-13, "exact flow");
   CHECK (sys.cnt.nsteps == 34, "nsteps %ld", sys.cnt.nsteps);
   CHECK (tr == 10.0, "t reached");
+
+  /* far from t = 0 every fixed step is h itself; the rows are at t0 + k h
+     rounded once.  The steps were the differences of those times, which
+     vary there by the round-off of t (here by up to 1.5e-6 h) */
+  setup (&sys, &hu, &o, &atol);
+  o.t0 = 1e8;
+  o.tf = 1e8 + 10;
+  o.h_fixed = 0.01;
+  h_least = INFINITY;
+  h_most = 0;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (st == SYM_DONE && S.nrows == 1001, "rows %d", S.nrows);
+  CHECK (h_least == 0.01 && h_most == 0.01, "steps %.17g to %.17g", h_least,
+         h_most);
+  int on_grid = 1;
+  for (int k = 0; k < 1001; k++)
+    on_grid &= S.t[k] == 1e8 + 0.01 * k;
+  CHECK (on_grid, "rows at t0 + k h");
+  CHECK_CLOSE (S.y[1000][0], cos (10.0), 1e-12, "exact flow over h");
+  /* a last step that h does not fit takes what is left */
+  setup (&sys, &hu, &o, &atol);
+  o.t0 = 1e8;
+  o.tf = 1e8 + 10.005;
+  o.h_fixed = 0.01;
+  h_least = INFINITY;
+  h_most = 0;
+  st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+  CHECK (st == SYM_DONE && S.nrows == 1002 && S.t[1001] == 1e8 + 10.005,
+         "rows %d", S.nrows);
+  CHECK (h_most == 0.01 && h_least == (1e8 + 10.005) - (1e8 + 10.0),
+         "steps %.17g to %.17g", h_least, h_most);
 
   /* fixed step, h dividing the interval up to rounding: no tiny step */
   setup (&sys, &hu, &o, &atol);
