@@ -199,7 +199,14 @@ typedef struct {
      (Ae[1]), at the nodes of the steps (te, he) */
   double *Ae[2];
   double te[2], he[2];
+  /* the starts of those steps from the start of the current one, counted
+     from the steps' sizes (core_clock): te[e] - t varies by the round-off
+     of t */
+  double te_rel[2];
   int nae;             /* how many of them are valid */
+  /* the last step core_clock was given */
+  double ck_t, ck_h, ck_tend;
+  int ck_ok;
   /* the step being solved, for the callbacks */
   sym_system *sys;
   double t, h;
@@ -560,6 +567,7 @@ core_keep (spvi_core *c)
       c->Ae[0] = tmp;
       c->te[1] = c->te[0];
       c->he[1] = c->he[0];
+      c->te_rel[1] = c->te_rel[0];
       c->nae = 2;
     }
   else if (c->nae == 0)
@@ -567,6 +575,30 @@ core_keep (spvi_core *c)
   memcpy (c->Ae[0], c->A, nn * nn * (size_t) c->m * sizeof (double));
   c->te[0] = c->t;
   c->he[0] = c->h;
+  c->te_rel[0] = 0.0;
+}
+
+/* A step (t, h) ending at tend is about to be solved: the kept
+   evaluations' starts are moved to count from t.  A step that starts
+   where the last one ended moves them by that step's h, so that fixed
+   steps see the same times at any t (far from t = 0 the differences of
+   the step times vary by the round-off of t: from t0 = 1e8 Kepler's
+   (4,3) at h = 2 pi/100 took 12 calls more in 14226, and its solution
+   drifted 6e-12 from the one from 0 over 2000 steps); a step from
+   elsewhere by the difference of the times. */
+static void
+core_clock (spvi_core *c, double t, double h, double tend)
+{
+  if (c->ck_ok && t != c->ck_t)
+    {
+      const double shift = t == c->ck_tend ? c->ck_h : t - c->ck_t;
+      for (int e = 0; e < c->nae; e++)
+        c->te_rel[e] -= shift;
+    }
+  c->ck_t = t;
+  c->ck_h = h;
+  c->ck_tend = tend;
+  c->ck_ok = 1;
 }
 
 /* The Newton matrix from the node Jacobians in c->A and the step c->h. */
@@ -750,8 +782,8 @@ core_extrapolate (spvi_core *c, sym_system *sys)
   const int m = c->m;
   const size_t nn = 2 * (size_t) c->d, nb = nn * nn;
   if (c->nae < 1 || c->te[0] == c->t
-      || ! (fabs (c->t - c->te[0]) <= SPVI_JX_STEPS * fabs (c->he[0])
-                                      * (1 + 1e-9)))
+      || ! (fabs (c->te_rel[0]) <= SPVI_JX_STEPS * fabs (c->he[0])
+                                   * (1 + 1e-9)))
     return 0;
   /* sample times in units of he[0] from te[0], ascending in the direction
      of integration; the older evaluation first */
@@ -759,12 +791,12 @@ core_extrapolate (spvi_core *c, sym_system *sys)
   double cb[2 * SPVI_JX_POINTS];
   const double *src[2 * SPVI_JX_POINTS];
   int np = 0;
-  for (int e = (c->nae > 1 && fabs (c->te[0] - c->te[1])
+  for (int e = (c->nae > 1 && fabs (c->te_rel[0] - c->te_rel[1])
                               <= SPVI_JX_SPAN * fabs (c->he[0]) * (1 + 1e-9));
        e >= 0; e--)
     for (int j = 0; j < m; j++)
       {
-        double tz = (c->te[e] - c->te[0]) / c->he[0]
+        double tz = (c->te_rel[e] - c->te_rel[0]) / c->he[0]
                     + 0.5 * (c->he[e] / c->he[0]) * (1.0 + c->z[j]);
         /* the latest SPVI_JX_POINTS only (they come in ascending order) */
         if (np == SPVI_JX_POINTS)
@@ -776,6 +808,10 @@ core_extrapolate (spvi_core *c, sym_system *sys)
         ts[np] = tz;
         src[np++] = c->Ae[e] + (size_t) j * nb;
       }
+  /* the new nodes, likewise */
+  double xe[SPVI_MAX_DOFS + 1];
+  for (int i = 0; i < m; i++)
+    xe[i] = (0.5 * c->h * (c->z[i] + 1.0) - c->te_rel[0]) / c->he[0];
   int off = 0;
   for (;; off++)
     {
@@ -783,8 +819,7 @@ core_extrapolate (spvi_core *c, sym_system *sys)
       double lam = 0.0;
       for (int i = 0; i < m; i++)
         {
-          lagrange_basis (np - off, ts + off, bw,
-                          (c->tj[i] - c->te[0]) / c->he[0], cb);
+          lagrange_basis (np - off, ts + off, bw, xe[i], cb);
           double sum = 0.0;
           for (int j = 0; j < np - off; j++)
             sum += fabs (cb[j]);
@@ -793,9 +828,6 @@ core_extrapolate (spvi_core *c, sym_system *sys)
       if (lam <= SPVI_JX_LEBESGUE || np - off == 1)
         break;
     }
-  double xe[SPVI_MAX_DOFS + 1];
-  for (int i = 0; i < m; i++)
-    xe[i] = (c->tj[i] - c->te[0]) / c->he[0];
   core_interp_A (c, np - off, ts + off, bw, src + off, xe);
   core_refactor (c, sys);
   return 1;
@@ -1748,6 +1780,9 @@ spvi_step (void *state, sym_system *sys, double t, double h, double tend,
         return st;
       s->have_hi = 1;
     }
+  core_clock (&s->lo, t, h, tend);
+  if (s->have_hi)
+    core_clock (&s->hi, t, h, tend);
   spvi_rec *tr = s->trial;
   memcpy (tr->y0, y, (size_t) nn * sizeof (double));
   double S;
