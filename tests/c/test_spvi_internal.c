@@ -10,10 +10,12 @@
 #include "testutil.h"
 #include "test_spvi_systems.h"
 
-/* Set up core c for the step (t, h, yk) as core_solve does. */
+/* Set up core c for the step (t, h, yk) as spvi_step and core_solve
+   do. */
 static void
 setup (spvi_core *c, sym_system *sys, double t, double h, const double *yk)
 {
+  core_clock (c, t, h, t + h);
   c->sys = sys;
   c->t = t;
   c->h = h;
