@@ -196,17 +196,13 @@ typedef struct {
   double h_mat;        /* h of the kept matrix */
   double h_kq;         /* h at which nw.kq was measured */
   /* node Jacobians as evaluated: the latest (Ae[0]) and the one before
-     (Ae[1]), at the nodes of the steps (te, he) */
+     (Ae[1]), at the nodes of the steps (te, he); te from the start of the
+     current step (0: this step), counted from the steps' sizes
+     (spvi_clock), since differences of the times t vary by their
+     round-off */
   double *Ae[2];
   double te[2], he[2];
-  /* the starts of those steps from the start of the current one, counted
-     from the steps' sizes (core_clock): te[e] - t varies by the round-off
-     of t */
-  double te_rel[2];
   int nae;             /* how many of them are valid */
-  /* the last step core_clock was given */
-  double ck_t, ck_h, ck_tend;
-  int ck_ok;
   /* the step being solved, for the callbacks */
   sym_system *sys;
   double t, h;
@@ -268,6 +264,9 @@ typedef struct {
   double *dhist;
   int nhist;
   double hhist;
+  /* the last step spvi_clock was given */
+  double ck_t, ck_h, ck_tend;
+  int ck_ok;
 } spvi_state;
 
 /* ---------------------------------------------------------------- core */
@@ -560,45 +559,29 @@ static void
 core_keep (spvi_core *c)
 {
   const size_t nn = 2 * (size_t) c->d;
-  if (c->nae > 0 && c->te[0] != c->t)
+  if (c->nae > 0 && c->te[0] != 0.0)
     {
       double *tmp = c->Ae[1];
       c->Ae[1] = c->Ae[0];
       c->Ae[0] = tmp;
       c->te[1] = c->te[0];
       c->he[1] = c->he[0];
-      c->te_rel[1] = c->te_rel[0];
       c->nae = 2;
     }
   else if (c->nae == 0)
     c->nae = 1;
   memcpy (c->Ae[0], c->A, nn * nn * (size_t) c->m * sizeof (double));
-  c->te[0] = c->t;
+  c->te[0] = 0.0;
   c->he[0] = c->h;
-  c->te_rel[0] = 0.0;
 }
 
-/* A step (t, h) ending at tend is about to be solved: the kept
-   evaluations' starts are moved to count from t.  A step that starts
-   where the last one ended moves them by that step's h, so that fixed
-   steps see the same times at any t (far from t = 0 the differences of
-   the step times vary by the round-off of t: from t0 = 1e8 Kepler's
-   (4,3) at h = 2 pi/100 took 12 calls more in 14226, and its solution
-   drifted 6e-12 from the one from 0 over 2000 steps); a step from
-   elsewhere by the difference of the times. */
+/* The current step starts shift after the last one: the kept
+   evaluations' starts count from it (see spvi_clock). */
 static void
-core_clock (spvi_core *c, double t, double h, double tend)
+core_move (spvi_core *c, double shift)
 {
-  if (c->ck_ok && t != c->ck_t)
-    {
-      const double shift = t == c->ck_tend ? c->ck_h : t - c->ck_t;
-      for (int e = 0; e < c->nae; e++)
-        c->te_rel[e] -= shift;
-    }
-  c->ck_t = t;
-  c->ck_h = h;
-  c->ck_tend = tend;
-  c->ck_ok = 1;
+  for (int e = 0; e < c->nae; e++)
+    c->te[e] -= shift;
 }
 
 /* The Newton matrix from the node Jacobians in c->A and the step c->h. */
@@ -781,8 +764,8 @@ core_extrapolate (spvi_core *c, sym_system *sys)
 {
   const int m = c->m;
   const size_t nn = 2 * (size_t) c->d, nb = nn * nn;
-  if (c->nae < 1 || c->te[0] == c->t
-      || ! (fabs (c->te_rel[0]) <= SPVI_JX_STEPS * fabs (c->he[0])
+  if (c->nae < 1 || c->te[0] == 0.0
+      || ! (fabs (c->te[0]) <= SPVI_JX_STEPS * fabs (c->he[0])
                                    * (1 + 1e-9)))
     return 0;
   /* sample times in units of he[0] from te[0], ascending in the direction
@@ -791,12 +774,12 @@ core_extrapolate (spvi_core *c, sym_system *sys)
   double cb[2 * SPVI_JX_POINTS];
   const double *src[2 * SPVI_JX_POINTS];
   int np = 0;
-  for (int e = (c->nae > 1 && fabs (c->te_rel[0] - c->te_rel[1])
+  for (int e = (c->nae > 1 && fabs (c->te[0] - c->te[1])
                               <= SPVI_JX_SPAN * fabs (c->he[0]) * (1 + 1e-9));
        e >= 0; e--)
     for (int j = 0; j < m; j++)
       {
-        double tz = (c->te_rel[e] - c->te_rel[0]) / c->he[0]
+        double tz = (c->te[e] - c->te[0]) / c->he[0]
                     + 0.5 * (c->he[e] / c->he[0]) * (1.0 + c->z[j]);
         /* the latest SPVI_JX_POINTS only (they come in ascending order) */
         if (np == SPVI_JX_POINTS)
@@ -811,7 +794,7 @@ core_extrapolate (spvi_core *c, sym_system *sys)
   /* the new nodes, likewise */
   double xe[SPVI_MAX_DOFS + 1];
   for (int i = 0; i < m; i++)
-    xe[i] = (0.5 * c->h * (c->z[i] + 1.0) - c->te_rel[0]) / c->he[0];
+    xe[i] = (0.5 * c->h * (c->z[i] + 1.0) - c->te[0]) / c->he[0];
   int off = 0;
   for (;; off++)
     {
@@ -850,7 +833,7 @@ core_borrow (spvi_core *c, const spvi_core *src, sym_system *sys)
 {
   const size_t nn = 2 * (size_t) c->d, nb = nn * nn;
   const int ms = src->m;
-  if (src->nae < 1 || src->te[0] != c->t || src->he[0] != c->h
+  if (src->nae < 1 || src->te[0] != 0.0 || src->he[0] != c->h
       || ms > SPVI_JX_POINTS)
     return 0;
   double bw[SPVI_JX_POINTS];
@@ -1764,6 +1747,30 @@ spvi_lengthen (spvi_state *s, sym_system *sys, double t, double h,
   return st;
 }
 
+/* A step (t, h) ending at tend is about to be solved: the cores' kept
+   evaluations are moved to count from t.  A step that starts where the
+   last one ended moves them by that step's h, so that fixed steps see
+   the same times at any t (far from t = 0 the differences of the step
+   times vary by the round-off of t: from t0 = 1e8 Kepler's (4,3) at
+   h = 2 pi/100 took 12 calls more in 14226, and its solution drifted
+   6e-12 from the one from 0 over 2000 steps); a step from elsewhere by
+   the difference of the times. */
+static void
+spvi_clock (spvi_state *s, double t, double h, double tend)
+{
+  if (s->ck_ok && t != s->ck_t)
+    {
+      const double shift = t == s->ck_tend ? s->ck_h : t - s->ck_t;
+      core_move (&s->lo, shift);
+      if (s->have_hi)
+        core_move (&s->hi, shift);
+    }
+  s->ck_t = t;
+  s->ck_h = h;
+  s->ck_tend = tend;
+  s->ck_ok = 1;
+}
+
 static int
 spvi_step (void *state, sym_system *sys, double t, double h, double tend,
            const double *y, double *ynext, double *yerr)
@@ -1780,9 +1787,7 @@ spvi_step (void *state, sym_system *sys, double t, double h, double tend,
         return st;
       s->have_hi = 1;
     }
-  core_clock (&s->lo, t, h, tend);
-  if (s->have_hi)
-    core_clock (&s->hi, t, h, tend);
+  spvi_clock (s, t, h, tend);
   spvi_rec *tr = s->trial;
   memcpy (tr->y0, y, (size_t) nn * sizeof (double));
   double S;
