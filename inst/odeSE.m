@@ -86,7 +86,9 @@
 ## with what is left of the span.  Without them the step is adaptive.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
 ## Adaptive mode, scaled as in @code{ode45} (defaults 1e-3, 1e-6, off,
-## automatic, |tf-t0|/10; MaxStep = Inf: no cap).  The local error
+## automatic, |tf-t0|/10; MaxStep = Inf: no cap; InitialStep = Inf: the
+## first step as long as MaxStep and @var{tspan} allow, as in
+## @code{ode45}).  The local error
 ## estimate is the difference to the trapezoidal rule built from @var{fcn}
 ## at both ends of the step, y(k+1) - y(k) - h/2 (f(k) + f(k+1)), of size
 ## O(h^2) like the method's local error; it costs one evaluation of

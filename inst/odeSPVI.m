@@ -94,7 +94,8 @@
 ## Every step is h itself and ends at t0 + k h rounded once, as in
 ## @code{odeSE}.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
-## Adaptive mode (the default), scaled as in @code{ode45}.  The local error
+## Adaptive mode (the default), scaled as in @code{ode45} (defaults,
+## InitialStep and MaxStep as in @code{odeSE}).  The local error
 ## is estimated, as in the original method, by a companion solution on the
 ## same step with one more mode and one more node (n+1, m+1), started from
 ## the lower-order solution.  The run then advances with the companion's

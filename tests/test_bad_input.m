@@ -314,8 +314,11 @@
 ## more than 1e12 steps (near t = 0 the least step does not bound them)
 %!test check_bad (all3, "Octave:invalid-input-arg", "MaxStep = 1e-300 needs 1e\\+300 steps to cover TSPAN, more than the 1e12 allowed; expected MaxStep >= 1e-12", f, [0 1], y0, struct ("MaxStep", 1e-300));
 %!test check_bad (all3, "Octave:invalid-input-arg", "MaxStep = 1e-20 needs 1e\\+20 steps", f, [1 2], y0, struct ("MaxStep", 1e-20));
-%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive finite scalar, got -1", f, [0 1], y0, struct ("InitialStep", -1));
-%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive finite scalar, got 0", f, [0 1], y0, struct ("InitialStep", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive scalar, got -1", f, [0 1], y0, struct ("InitialStep", -1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive scalar, got 0", f, [0 1], y0, struct ("InitialStep", 0));
+%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive scalar, got NaN", f, [0 1], y0, struct ("InitialStep", NaN));
+%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive scalar, got -Inf", f, [0 1], y0, struct ("InitialStep", -Inf));
+%!test check_bad (all3, "Octave:invalid-input-arg", "InitialStep must be a positive real scalar, got 1x2 double", f, [0 1], y0, struct ("InitialStep", [1 2]));
 %!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive finite scalar, got 0", f, [0 1], y0, struct ("TimeStepSize", 0));
 %!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive finite scalar, got -0.1", f, [0 1], y0, struct ("TimeStepSize", -0.1));
 %!test check_bad (all3, "Octave:invalid-input-arg", "TimeStepSize must be a positive finite scalar, got NaN", f, [0 1], y0, struct ("TimeStepSize", NaN));

@@ -773,6 +773,40 @@
 %! endfor
 
 %!test
+%! ## InitialStep = Inf: the first step as long as MaxStep and TSPAN allow,
+%! ## as ode45 takes it; the same run as with that step given
+%! f = @(t, y) [y(2); -1e-4 * y(1)];
+%! for i = 1:3
+%!   ## the default cap |tf-t0|/10
+%!   [t1, y1] = solvers{i} (f, [0 100], [1; 0], odeset ("InitialStep", Inf));
+%!   [t2, y2] = solvers{i} (f, [0 100], [1; 0], odeset ("InitialStep", 10));
+%!   assert (isequal (t1, t2) && isequal (y1, y2));
+%!   if (i > 1)    # odeSE's (order 1) first step of 10 fails; it is shortened
+%!     assert (t1(2), 10);
+%!   endif
+%!   ## no cap: the span, backwards too
+%!   o = odeset ("InitialStep", Inf, "MaxStep", Inf);
+%!   [t1, y1] = solvers{i} (f, [0 -2], [1; 0], o);
+%!   [t2, y2] = solvers{i} (f, [0 -2], [1; 0], odeset (o, "InitialStep", 2));
+%!   assert (isequal (t1, t2) && isequal (y1, y2));
+%!   if (i > 1)
+%!     assert (t1, [0; -2]);
+%!   endif
+%!   ## a first step that fails is shortened as any other: the run is
+%!   ## as accurate as from the automatic start
+%!   ## (errors at t = 10: 3.5e-4, 4.3e-5, 7.5e-9 against 3.5e-4, 4.3e-5,
+%!   ## 6.0e-9)
+%!   g = @(t, y) [y(2); -y(1)];
+%!   o = odeset ("RelTol", 1e-6, "AbsTol", 1e-8);
+%!   [t1, y1] = solvers{i} (g, [0 10], [1; 0], odeset (o, "InitialStep", Inf));
+%!   [t2, y2] = solvers{i} (g, [0 10], [1; 0], o);
+%!   assert (t1(end), 10);
+%!   e1 = norm (y1(end, :) - [cos(10), -sin(10)]);
+%!   e2 = norm (y2(end, :) - [cos(10), -sin(10)]);
+%!   assert (e1 < 2 * e2);
+%! endfor
+
+%!test
 %! ## spans a few ulps of t wide reach tf as in ode45: steps below 16 ulps
 %! ## of t (here all of them, MaxStep being span/10) are raised to that; a
 %! ## MaxStep set below it warns at once

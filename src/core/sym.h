@@ -362,7 +362,7 @@ typedef struct {
                           SYM_EBADINPUT) */
   int atol_len;
   int norm_control;
-  double h0;           /* 0: automatic */
+  double h0;           /* 0: automatic; inf: as long as hmax allows */
   double hmax;         /* 0: |tf - t0| / 10; inf: no cap (as ode45) */
   long max_steps;      /* 0: no limit */
   /* events */

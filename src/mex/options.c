@@ -289,8 +289,10 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
   if (o->norm_control && o->atol_len > 1)
     mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a scalar when "
                        "NormControl is \"on\"", solver);
+  /* Inf: the first step as long as MaxStep and TSPAN allow (the driver
+     caps it), as ode45 takes it */
   o->h0 = (v = field (solver, opts, "InitialStep"))
-          ? pos_scalar (solver, v, "InitialStep", 0) : 0;
+          ? pos_scalar (solver, v, "InitialStep", 1) : 0;
   o->hmax = (v = field (solver, opts, "MaxStep"))
             ? pos_scalar (solver, v, "MaxStep", 1) : 0;
   o->events = function_opt (solver, opts, "Events");

@@ -760,6 +760,20 @@ main (void)
     st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
     CHECK (st == SYM_DONE && sys.cnt.nfailed > 0, "rejections %ld",
            sys.cnt.nfailed);
+    /* h0 = inf: the first step as long as hmax allows, the run above */
+    {
+      int rows5 = S.nrows;
+      double t5 = S.t[rows5 - 1], y5 = S.y[rows5 - 1][0];
+      long fail5 = sys.cnt.nfailed;
+      setup (&sys, &hu, &o, &atol);
+      o.h0 = INFINITY;
+      o.hmax = 5;
+      st = sym_integrate (&mid_type, &sys, &mo, &o, y0, &tr);
+      CHECK (st == SYM_DONE && S.nrows == rows5 && S.t[S.nrows - 1] == t5
+             && S.y[S.nrows - 1][0] == y5 && sys.cnt.nfailed == fail5,
+             "h0 = inf: %s, %d rows, %ld failed (h0 = 5: %d, %ld)",
+             sym_status_name (st), S.nrows, sys.cnt.nfailed, rows5, fail5);
+    }
     /* backward adaptive */
     setup (&sys, &hu, &o, &atol);
     o.tf = -10;
