@@ -133,7 +133,8 @@ typedef struct {
    instead of 2.00. */
 #define SYM_PRED_MAX 16
 typedef struct {
-  int d, n;                /* errors held, newest first */
+  int d;                   /* the unknown's size */
+  int n;                   /* errors held (x), newest first */
   int kind;                /* of their base (a caller's label) */
   int have_new, new_cont, new_kind;  /* the trial's solved value, whether
                               the trial continued the last accepted step,
