@@ -203,7 +203,22 @@
 ## more than two @var{tspan} elements and for the @var{sol} output.
 ## @code{Stats} prints steps, failed
 ## steps, @var{fcn} calls, Newton iterations, Jacobian/Hessian evaluations
-## and LU factorizations.
+## and LU factorizations.  Whatever @code{Stats}, @code{sol.stats} holds
+## the counts: @code{nsteps} (accepted steps), @code{nfailed} (steps
+## tried again, for the error test or a Newton failure), @code{nfevals}
+## (calls of @var{fcn} for f, a Vectorized call counting once; those for
+## finite-difference matrices included), @code{nstates} (states those
+## calls evaluated: a Vectorized call of k columns counts k),
+## @code{nfdevals} (of @code{nfevals}, the calls for finite-difference
+## matrices and for the probe of a given Jacobian or Hessian), @code{npds}
+## (evaluations of the matrix given: calls of the Jacobian function or
+## of @code{HamiltonianHessFcn}, uses of a constant Jacobian matrix, or
+## calls of @var{fcn} for its second output), @code{nnewton} (Newton
+## iterations), @code{ndecomps} (LU factorizations), @code{nlinsols}
+## (linear solves with them) and @code{jacobian_source} (where Newton's
+## matrix came from).  @var{fcn} is called @code{nfevals + npds} times
+## when Newton's matrix comes from its second output, else
+## @code{nfevals} times.
 ## @item Vectorized
 ## @qcode{"on"}: @var{fcn} accepts a 2d-by-k matrix of states with a 1-by-k
 ## row of times.  @code{odeSE} steps one state at a time; its

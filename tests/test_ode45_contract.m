@@ -42,6 +42,25 @@
 %!  ddy = [(eye (2) - 3 * (q * q.') / r^2) / r^3, zeros(2); zeros(2), eye(2)];
 %!endfunction
 
+%!function [dy, ddy] = kepler_tally (t, y)
+%!  ## records [columns of y, nargout] of every call
+%!  global CONTRACT_TALLY
+%!  CONTRACT_TALLY(end+1, :) = [columns(y), nargout];
+%!  q = y(1:2, :);
+%!  r = sqrt (sum (q.^2, 1));
+%!  dy = [y(3:4, :); -q ./ r.^3];
+%!  if (nargout > 1)
+%!    ddy = [(eye (2) - 3 * (q * q.') / r^2) / r^3, zeros(2); zeros(2), eye(2)];
+%!  endif
+%!endfunction
+
+%!function ddy = kepler_hess_tally (t, y)
+%!  global CONTRACT_HESS
+%!  CONTRACT_HESS += 1;
+%!  q = y(1:2);  r = norm (q);
+%!  ddy = [(eye (2) - 3 * (q * q.') / r^2) / r^3, zeros(2); zeros(2), eye(2)];
+%!endfunction
+
 %!function dy = contract_osc (t, y)
 %!  dy = [y(2); -y(1)];
 %!endfunction
@@ -528,6 +547,53 @@
 %! assert (! isempty (strfind (txt, sprintf ("Hessian evaluations: %d (source: second output of FCN (Hessian), calls that also give f;", sol.stats.npds))));
 %! assert (sol.stats.npds > 0);
 
+%!test
+%! ## sol.stats counts what the user's functions see (help odeSE): fcn is
+%! ## called nfevals + npds times with the Hessian as its second output,
+%! ## nfevals times otherwise; npds calls of HamiltonianHessFcn; nstates
+%! ## states; nfdevals of the calls for finite differences
+%! global CONTRACT_TALLY CONTRACT_HESS CONTRACT_CALLS
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! o = symplecticset ("TimeStepSize", 2*pi/50);
+%! for i = 1:3
+%!   ## the Hessian as second output, fixed step
+%!   CONTRACT_TALLY = zeros (0, 2);
+%!   s = solvers{i} (@kepler_tally, [0 2*pi], y0, o);
+%!   assert (s.stats.jacobian_source, "second output of FCN (Hessian)");
+%!   assert (rows (CONTRACT_TALLY), s.stats.nfevals + s.stats.npds);
+%!   assert (s.stats.npds > 0);
+%!   assert (s.stats.nstates, s.stats.nfevals);
+%!   assert (s.stats.nsteps, numel (s.x) - 1);
+%!   assert (s.stats.nsteps, 50);
+%!   assert (s.stats.nfailed, 0);
+%!   ## HamiltonianHessFcn, adaptive: it is called npds times; fcn, nfevals
+%!   ## times, one or two of them for the probe of the first Hessian
+%!   CONTRACT_TALLY = zeros (0, 2);  CONTRACT_HESS = 0;
+%!   s = solvers{i} (@kepler_tally, [0 2*pi], y0, ...
+%!                   symplecticset ("HamiltonianHessFcn", @kepler_hess_tally));
+%!   assert (s.stats.jacobian_source, "HamiltonianHessFcn");
+%!   assert (rows (CONTRACT_TALLY), s.stats.nfevals);
+%!   assert (all (CONTRACT_TALLY(2:end, 2) == 1));
+%!   assert (CONTRACT_HESS, s.stats.npds);
+%!   assert (CONTRACT_HESS > 0);
+%!   assert (any (s.stats.nfdevals == [1 2]));
+%!   assert (s.stats.nsteps, numel (s.x) - 1);
+%!   ## Vectorized, finite differences: a call of k states counts once in
+%!   ## nfevals and k times in nstates; the calls for the matrices are
+%!   ## those of more states than a step evaluates at once (1; odeSPVI 3)
+%!   CONTRACT_CALLS = [];
+%!   s = solvers{i} (@kepler_counted, [0 2*pi], y0, ...
+%!                   symplecticset (o, "Vectorized", "on", ...
+%!                                  "NewtonMatrix", "kept"));
+%!   assert (s.stats.jacobian_source, "finite differences of FCN");
+%!   nodes = 1 + 2 * strcmp (func2str (solvers{i}), "odeSPVI");
+%!   assert (numel (CONTRACT_CALLS), s.stats.nfevals);
+%!   assert (sum (CONTRACT_CALLS), s.stats.nstates);
+%!   assert (sum (CONTRACT_CALLS > nodes), s.stats.nfdevals);
+%!   assert (s.stats.nstates > s.stats.nfevals);
+%!   assert (s.stats.npds, 0);
+%! endfor
+
 ## ------------------------------------------------------------ Vectorized
 %!test
 %! ## odeSPVI: the same trajectory with fewer calls of fcn
@@ -963,7 +1029,7 @@
 %! assert (listed, sort (regexprep ({m.name}, '\.m$', "")));
 
 %!test
-%! clear -global CONTRACT_CALLS CONTRACT_LOG CONTRACT_TSTOP
+%! clear -global CONTRACT_CALLS CONTRACT_LOG CONTRACT_TSTOP CONTRACT_TALLY CONTRACT_HESS
 
 %!test
 %! ## output times after the end of TimeStepNumber steps: a warning with
