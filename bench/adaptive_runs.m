@@ -3,9 +3,11 @@
 ## the Hessian as second output of fcn, and odeSPVI on Kepler e = 0.6
 ## without it (finite differences): steps, failed steps, callbacks (fcn
 ## and Hessian, of them with the Hessian) and the end-point error, at
-## RelTol = AbsTol from 1e-3 down.  Not part of `make bench` (it times
-## nothing); the step-size control's comments in src/core/control.c quote
-## it.  Run from the top directory after make:
+## RelTol = AbsTol from 1e-3 down; then, on two oscillators of
+## frequencies 1 and 100, how much adaptive steps of ode45 and the three
+## solvers, and fixed steps of odeSV, change the fast one's energy (help
+## odeSE quotes it).  Not part of `make bench` (it times nothing); the
+## step-size control's comments in src/core/control.c quote it.  Run from the top directory after make:
 ##
 ##   octave-cli --path inst bench/adaptive_runs.m
 
@@ -68,4 +70,57 @@ for i = 1:rows (probs)
               norm (s.y(:, end) - probs{i, 5}, Inf));
     endfor
   endfor
+endfor
+
+## Two oscillators, H = (p1^2 + q1^2)/2 + (p2^2 + w^2 q2^2)/2 with w = 100,
+## the fast one at amplitude 1e-3 (q2), over [0, 100]: the fast
+## oscillator's energy E2 over the run relative to its start (1 exact):
+## its least and largest value, its value at the end and its largest
+## distance from 1, and the end-point error.  Adaptive steps follow the phase of the fast
+## oscillation (its local error vanishes twice per period), and the step
+## sequence, locked to that phase, pumps its energy; a fixed step keeps
+## it (help odeSV).
+w = 100;
+osc2 = @(t, y) [y(3:4, :); -y(1, :); -w^2 * y(2, :)];
+y0 = [1; 1e-3; 0; 0];
+yex = @(t) [cos(t); 1e-3*cos(w*t); -sin(t); -1e-3*w*sin(w*t)];
+E2 = @(y) (y(4, :).^2 + w^2 * y(2, :).^2) / (w^2 * 1e-6);
+E2s = @(e) [min(e), max(e), e(end), max(abs (e - 1))];
+printf ("\ntwo oscillators (w = 1, 100), [0, 100]: fast energy E2\n");
+printf ("%-8s %-26s %7s %7s %9s %9s %9s %9s %10s\n", "solver", ...
+        "options", "steps", "failed", "E2 min", "E2 max", "E2 end", ...
+        "|E2-1|", "error");
+runs = {"default", 1e-3, 1e-4, 1e-6};
+for k = 1:4
+  for i = 1:numel (runs)
+    if (i == 1)
+      o = odeset ();
+      what = "default";
+    else
+      o = odeset ("RelTol", runs{i}, "AbsTol", runs{i});
+      what = sprintf ("RelTol = AbsTol = %g", runs{i});
+    endif
+    if (k == 1)
+      s = ode45 (osc2, [0 100], y0, o);
+      name = "ode45";
+      nfailed = NaN;
+    else
+      s = solvers{k-1} (osc2, [0 100], y0, o);
+      name = func2str (solvers{k-1});
+      nfailed = s.stats.nfailed;
+    endif
+    if (rows (s.y) != 4)
+      s.y = s.y.';
+    endif
+    printf ("%-8s %-26s %7d %7g %9.2g %9.3g %9.3g %9.2g %10.2e\n", name, what, ...
+            numel (s.x) - 1, nfailed, ...
+            E2s (E2 (s.y)), norm (s.y(:, end) - yex (100), Inf));
+  endfor
+endfor
+for h = [0.01 0.002]
+  o = symplecticset ("TimeStepSize", h, "Separable", "on");
+  s = odeSV (osc2, [0 100], y0, o);
+  printf ("%-8s %-26s %7d %7g %9.2g %9.3g %9.3g %9.2g %10.2e\n", "odeSV", ...
+          sprintf ("TimeStepSize = %g", h), s.stats.nsteps, 0, ...
+          E2s (E2 (s.y)), norm (s.y(:, end) - yex (100), Inf));
 endfor

@@ -62,7 +62,9 @@
 ## evaluation).  It matches the local error in every component to leading
 ## order; the first part alone would be zero in p for separable H, where
 ## Verlet's p-update is the trapezoidal rule.  It costs one evaluation of
-## @var{fcn} per step.  Dense output (for output times, @code{Refine} and
+## @var{fcn} per step.  Adaptive steps do not keep the energy of fast
+## oscillations, which they can pump by orders of magnitude (see RelTol
+## in @code{help odeSE}): use a fixed step for such systems.  Dense output (for output times, @code{Refine} and
 ## events) is the cubic Hermite interpolant through the step points.
 ##
 ## Example: Kepler's problem over 100 orbits with a fixed step; the energy

@@ -417,3 +417,23 @@
 %!   assert (2 * s1.stats.nfdevals, s0.stats.nfdevals);
 %!   assert (s0.stats.nfevals - s1.stats.nfevals, s1.stats.nfdevals);
 %! endfor
+
+## ------------------------------------------------- fast oscillation, fixed
+%!test
+%! ## two oscillators, frequencies 1 and 100, the fast one at amplitude
+%! ## 1e-3: a fixed step of odeSV keeps the fast one's energy (help odeSE,
+%! ## RelTol; bench/adaptive_runs.m shows adaptive steps moving it).
+%! ## Verlet conserves p^2 + w^2 q^2 (1 - (w h)^2/4) exactly for each
+%! ## oscillator, so the energy itself changes by at most (w h)^2/4
+%! w = 100;  h = 0.002;
+%! f = @(t, y) [y(3:4); -y(1); -w^2 * y(2)];
+%! y0 = [1; 1e-3; 0; 0];
+%! s = odeSV (f, [0 100], y0, symplecticset ("TimeStepSize", h, "Separable", "on"));
+%! assert (s.stats.nsteps, 50000);
+%! E2 = (s.y(4, :).^2 + w^2 * s.y(2, :).^2) / (w^2 * 1e-6);
+%! I2 = (s.y(4, :).^2 + w^2 * (1 - (w*h)^2/4) * s.y(2, :).^2) / (w^2 * 1e-6);
+%! assert (max (abs (I2 - I2(1))) < 1e-12);
+%! assert (max (abs (E2 - 1)) <= (w*h)^2/4 + 1e-12);
+%! assert (max (abs (E2 - 1)) > 0.99 * (w*h)^2/4);
+%! I1 = s.y(3, :).^2 + (1 - h^2/4) * s.y(1, :).^2;
+%! assert (max (abs (I1 - I1(1))) < 1e-12);
