@@ -7,7 +7,8 @@
 ## frequencies 1 and 100, how much adaptive steps of ode45 and the three
 ## solvers, and fixed steps of odeSV, change the fast one's energy (help
 ## odeSE quotes it).  Not part of `make bench` (it times nothing); the
-## step-size control's comments in src/core/control.c quote it.  Run from the top directory after make:
+## step-size control's comments in src/core/control.c quote it.  Run
+## from the top directory after make:
 ##
 ##   octave-cli --path inst bench/adaptive_runs.m
 
@@ -76,10 +77,10 @@ endfor
 ## the fast one at amplitude 1e-3 (q2), over [0, 100]: the fast
 ## oscillator's energy E2 over the run relative to its start (1 exact):
 ## its least and largest value, its value at the end and its largest
-## distance from 1, and the end-point error.  Adaptive steps follow the phase of the fast
-## oscillation (its local error vanishes twice per period), and the step
-## sequence, locked to that phase, pumps its energy; a fixed step keeps
-## it (help odeSV).
+## distance from 1, and the end-point error.  Adaptive steps follow the
+## phase of the fast oscillation (its local error vanishes twice per
+## period), and the step sequence, locked to that phase, drains or pumps
+## its energy; a fixed step keeps it (help odeSE, RelTol).
 w = 100;
 osc2 = @(t, y) [y(3:4, :); -y(1, :); -w^2 * y(2, :)];
 y0 = [1; 1e-3; 0; 0];
@@ -112,9 +113,9 @@ for k = 1:4
     if (rows (s.y) != 4)
       s.y = s.y.';
     endif
-    printf ("%-8s %-26s %7d %7g %9.2g %9.3g %9.3g %9.2g %10.2e\n", name, what, ...
-            numel (s.x) - 1, nfailed, ...
-            E2s (E2 (s.y)), norm (s.y(:, end) - yex (100), Inf));
+    printf ("%-8s %-26s %7d %7g %9.2g %9.3g %9.3g %9.2g %10.2e\n", ...
+            name, what, numel (s.x) - 1, nfailed, E2s (E2 (s.y)), ...
+            norm (s.y(:, end) - yex (100), Inf));
   endfor
 endfor
 for h = [0.01 0.002]

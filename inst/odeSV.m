@@ -64,8 +64,9 @@
 ## Verlet's p-update is the trapezoidal rule.  It costs one evaluation of
 ## @var{fcn} per step.  Adaptive steps do not keep the energy of fast
 ## oscillations, which they can pump by orders of magnitude (see RelTol
-## in @code{help odeSE}): use a fixed step for such systems.  Dense output (for output times, @code{Refine} and
-## events) is the cubic Hermite interpolant through the step points.
+## in @code{help odeSE}): use a fixed step for such systems.  Dense
+## output (for output times, @code{Refine} and events) is the cubic
+## Hermite interpolant through the step points.
 ##
 ## Example: Kepler's problem over 100 orbits with a fixed step; the energy
 ## error stays bounded and the angular momentum is conserved.

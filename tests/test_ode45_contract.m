@@ -573,7 +573,7 @@
 %!                   symplecticset ("HamiltonianHessFcn", @kepler_hess_tally));
 %!   assert (s.stats.jacobian_source, "HamiltonianHessFcn");
 %!   assert (rows (CONTRACT_TALLY), s.stats.nfevals);
-%!   assert (all (CONTRACT_TALLY(2:end, 2) == 1));
+%!   assert (all (CONTRACT_TALLY(:, 2) == 1));
 %!   assert (CONTRACT_HESS, s.stats.npds);
 %!   assert (CONTRACT_HESS > 0);
 %!   assert (any (s.stats.nfdevals == [1 2]));
