@@ -91,6 +91,7 @@ printf ("\ntwo oscillators (w = 1, 100), [0, 100]: fast energy E2\n");
 printf ("%-8s %-26s %7s %7s %9s %9s %9s %9s %10s\n", "solver", ...
         "options", "steps", "failed", "E2 min", "E2 max", "E2 end", ...
         "|E2-1|", "error");
+row = "%-8s %-26s %7d %7g %9.2g %9.3g %9.3g %9.2g %10.2e\n";
 runs = {"default", 1e-3, 1e-4, 1e-6};
 for k = 1:4
   for i = 1:numel (runs)
@@ -113,15 +114,13 @@ for k = 1:4
     if (rows (s.y) != 4)
       s.y = s.y.';
     endif
-    printf ("%-8s %-26s %7d %7g %9.2g %9.3g %9.3g %9.2g %10.2e\n", ...
-            name, what, numel (s.x) - 1, nfailed, E2s (E2 (s.y)), ...
+    printf (row, name, what, numel (s.x) - 1, nfailed, E2s (E2 (s.y)), ...
             norm (s.y(:, end) - yex (100), Inf));
   endfor
 endfor
 for h = [0.01 0.002]
   o = symplecticset ("TimeStepSize", h, "Separable", "on");
   s = odeSV (osc2, [0 100], y0, o);
-  printf ("%-8s %-26s %7d %7g %9.2g %9.3g %9.3g %9.2g %10.2e\n", "odeSV", ...
-          sprintf ("TimeStepSize = %g", h), s.stats.nsteps, 0, ...
-          E2s (E2 (s.y)), norm (s.y(:, end) - yex (100), Inf));
+  printf (row, "odeSV", sprintf ("TimeStepSize = %g", h), s.stats.nsteps, ...
+          0, E2s (E2 (s.y)), norm (s.y(:, end) - yex (100), Inf));
 endfor
