@@ -1,3 +1,6 @@
+# Copyright (C) 2026 The symplectic developers
+# SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 # Makefile -- developer entry point of the symplectic Octave package.
 #
 #   make [all]          install missing Debian dependencies, build the MEX files

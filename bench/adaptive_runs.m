@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## adaptive_runs.m -- adaptive steps of the three solvers on Kepler
 ## (e = 0.6 and 0.9, 10 periods) and the pendulum (50 time units), with
 ## the Hessian as second output of fcn, and odeSPVI on Kepler e = 0.6

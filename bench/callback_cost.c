@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* callback_cost.c -- measures what one call of an Octave function costs
    from C, the way the solvers call it: mexCallMATLAB with argument arrays
    that are reused between calls, by name (FCN a function's name, as the

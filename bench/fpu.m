@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## fpu.m -- a beta Fermi-Pasta-Ulam chain of d unit masses with fixed ends:
 ## H = sum p_i^2/2 + sum_{i=0}^{d} V(q_{i+1} - q_i), q_0 = q_{d+1} = 0,
 ## V(r) = r^2/2 + beta r^4/4, beta = 1.  Returns Hamilton's equations and,

@@ -1,4 +1,6 @@
 #!/bin/sh
+# Copyright (C) 2026 The symplectic developers
+# SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
 # p3_profile.sh -- P3 by sampling instead of timing: the solver's time
 # (samples under mexFunction, the MEX entry) over the time of its calls of
 # the user's function (samples under mexCallMATLAB, all of a call: the

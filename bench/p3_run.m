@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## p3_run.m -- the run that bench/p3_profile.sh samples: odeSPVI (4,3),
 ## h = T/100, on Kepler (e = 0.6) over 30 periods, as in P1-P3 of
 ## bench/run_benchmarks.m.

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## run_benchmarks.m -- every benchmark of the package in one process run,
 ## printed as one table and written to bench/RESULTS.md with the machine and
 ## Octave version.  `make bench` runs it with inst/ on the path.

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## spvi_mfile.m -- the spectral variational integrator in plain Octave, as
 ## the original m-file stepper did it: the whole system (Legendre modes
 ## a_0..a_{n-1}, nodal momenta p_1..p_m, q_{k+1}, p_{k+1} per component)

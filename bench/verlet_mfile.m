@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## verlet_mfile.m -- Stormer-Verlet (leapfrog) for separable H as a plain
 ## Octave loop, two calls of the combined FCN per step as the compiled
 ## explicit path makes them; the reference of benchmark P4.

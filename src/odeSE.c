@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* odeSE.c -- MEX entry point of odeSE; all the work is in mex/ and core/. */
 #include "mex/symmex.h"
 

@@ -1,4 +1,6 @@
 #!/bin/sh
+# Copyright (C) 2026 The symplectic developers
+# SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
 # check_memory.sh -- the MEX functions under valgrind (make check-memory).
 #
 #   tests/check_memory.sh [MEXDIR [OCTAVE]]

@@ -1,4 +1,6 @@
 #!/bin/sh
+# Copyright (C) 2026 The symplectic developers
+# SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
 # ctrlc_test.sh -- Ctrl-C (SIGINT) during a long integration must bring an
 # interactive Octave back to its prompt, still working.
 #

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## -*- texinfo -*-
 ## @deftypefn {} {[@var{dy}, @var{hess}] =} memcheck_osc (@var{t}, @var{y})
 ## The harmonic oscillator with its Hessian as second output, in a file of

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## -*- texinfo -*-
 ## @deftypefn {} {@var{status} =} memcheck_run ()
 ## The workload of @code{make check-memory} (tests/check_memory.sh): a

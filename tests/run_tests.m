@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## -*- texinfo -*-
 ## @deftypefn  {} {@var{status} =} run_tests ()
 ## @deftypefnx {} {@var{status} =} run_tests ("installed")

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## Every bad input gets a clear error: its message
 ## begins with the solver's name (once), says what is wrong and what is
 ## expected, and it has an identifier: "Octave:invalid-input-arg" for bad

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## Ctrl-C during a long integration returns Octave to its prompt, still
 ## working: tests/ctrlc_test.sh runs octave-cli --interactive, sends SIGINT
 ## to it during runs of odeSPVI, odeSE and odeSV (long calls, with Events,

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## Fuzzing the argument checks: 10000 calls of odeSE, odeSV and odeSPVI
 ## with randomly malformed arguments (types, sizes, values, option
 ## structs, misbehaving user functions) from a fixed seed.  Every call must

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## An error thrown by the user's function in the middle of a run leaves
 ## the MEX function through mexCallMATLAB, without coming back: everything
 ## the run holds must be freed by Octave then (mxMalloc / mxCreate*).

@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## The ode45 contract of odeSE, odeSV and odeSPVI: output times and dense
 ## output, events, OutputFcn/OutputSel/odeplot, Refine, the sol struct and
 ## Stats, Vectorized, options (case, odepkg scripts, plain structs), extra

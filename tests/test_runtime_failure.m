@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## When the integration cannot go on (FCN keeps returning NaN, Newton
 ## diverges at the smallest or at the fixed step, the step size underflows,
 ## MaxSteps is reached), the solvers warn with an identifier, as ode45

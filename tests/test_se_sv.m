@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## Tests of odeSE and odeSV through the Octave interface: orders,
 ## symplecticity, long-time energy, momenta, reversibility, the explicit
 ## separable paths, the four Jacobian sources, forcing, adaptive control.

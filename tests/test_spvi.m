@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## Tests of odeSPVI through the Octave interface: measured orders against
 ## the exact pendulum, symplecticity, Kepler's invariants over many periods,
 ## the four sources of Newton's matrix, adaptive control, bad pairs.

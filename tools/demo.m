@@ -1,3 +1,6 @@
+## Copyright (C) 2026 The symplectic developers
+## SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
+
 ## demo.m -- the README's demonstration (make demo).
 ##
 ## Kepler's problem, eccentricity 0.6, over 100 periods: odeSPVI and odeSV

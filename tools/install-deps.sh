@@ -1,4 +1,6 @@
 #!/bin/sh
+# Copyright (C) 2026 The symplectic developers
+# SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
 # tools/install-deps.sh -- make sure the build and test dependencies are
 # present; install the missing ones from Debian's packages.
 #

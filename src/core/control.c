@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* control.c -- error norms and step-size choice for the adaptive driver,
    scaled exactly as Octave's ode45 scales them, so that RelTol and AbsTol
    mean the same thing to a user of either. */

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* control.h -- internal to the core: error norms and step-size choice. */
 #ifndef SYM_CONTROL_H
 #define SYM_CONTROL_H

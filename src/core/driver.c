@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* driver.c -- the integration loop.  It owns nothing method-specific:
    it takes steps through a stepper table (fixed or adaptive h), accepts or
    rejects them, hands rows to the output sink (step points, refined points

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* newton.c -- dense LU (LAPACK dgetrf/dgetrs) and the simplified Newton
    iteration shared by the implicit steppers.
 

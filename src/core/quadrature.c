@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* quadrature.c -- Gauss-Legendre nodes and weights, Legendre polynomials.
 
    Nodes: Golub-Welsch.  The Jacobi matrix of the Legendre weight is the

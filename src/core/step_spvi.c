@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* step_spvi.c -- the spectral variational integrator (odeSPVI).
 
    The method.  One step [t_k, t_k + h]; z in [-1, 1], t(z) = t_k +

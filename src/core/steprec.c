@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* steprec.c -- step records, f cache and checked Newton solves shared by
    the symplectic Euler and Stormer-Verlet steppers (see steprec.h). */
 #include "steprec.h"

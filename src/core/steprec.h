@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* steprec.h -- internal to the core: what the one-step methods of
    step_se.c and step_sv.c share (step_spvi.c takes the cubic Hermite
    interpolant).  A pair of step records (the last accepted step and the

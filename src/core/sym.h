@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* sym.h -- the public interface of the symplectic integration core.
 
    Pure C99: nothing here knows of Octave.  The MEX layer (src/mex/) and the

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* system.c -- allocator hook, status names, and counted calls through the
    user's system (rhs, batch rhs, Jacobian or its finite differences). */
 #include "sym.h"

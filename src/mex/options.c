@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* options.c -- odeset options and the package's own fields, matched by
    name without regard to case, checked, with the defaults that the help
    of symplecticset lists. */

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* run.c -- one call of a solver: arguments, the user's functions as C
    callbacks of the core, the output sink, warnings, Stats and outputs.
 

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* symmex.h -- the Octave side of the package: the only code that includes
    mex.h.  It validates arguments and options, turns the user's function
    handles into C callbacks of the core, and builds the outputs. */

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* se_sv_systems.h -- test problems for the SE and SV steppers
    (test_se_sv_*.c): analytic f and Df, failure injection, a fixed-step
    loop over the stepper table, an RK4 reference and naive fixed-point

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_core.c -- the shared parts of the core: allocator hook, counted
    callbacks with NaN/status checks, finite-difference Jacobians, LU, and
    the simplified Newton iteration (convergence, reuse, failure). */

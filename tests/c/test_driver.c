@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_driver.c -- the driver loop on its own: fixed and adaptive steps,
    output times, refine, events, stops, failures.  Two test steppers live
    here so that the driver is tested independently of the real methods:

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_quadrature.c -- Gauss-Legendre rules and Legendre polynomials. */
 #include "sym.h"
 #include "testutil.h"

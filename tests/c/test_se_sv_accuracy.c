@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_se_sv_accuracy.c -- symplectic Euler and Stoermer-Verlet steppers:
    convergence orders, agreement with naive versions of the same schemes,
    the forced (damped) oscillator, the error estimate, dense output and

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_se_sv_geometry.c -- geometric properties of the SE and SV steppers:
    symplecticity of the step map, bounded energy error, exact conservation
    of angular momentum, time reversibility of SV. */

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_se_sv_robust.c -- SE and SV steppers: separable vs general paths,
    rhs calls per step, Jacobian sources, LU reuse, failure injection (rhs,
    Jacobian, allocator), bad input, reset. */

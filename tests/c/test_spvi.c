@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_spvi.c -- the SPVI stepper through its table (alloc / step / accept
    / dense / reset / free), with C callbacks.  The long Kepler run is in
    test_spvi_kepler.c, the Newton matrix against finite differences of the

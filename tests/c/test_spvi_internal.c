@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_spvi_internal.c -- the SPVI stepper's static parts: its analytic
    Newton matrix against central differences of its residual, and the
    exactness of the predictor.  The stepper's source is included with its

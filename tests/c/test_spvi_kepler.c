@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_spvi_kepler.c -- long-time behaviour of SPVI (4,3) at a fixed step
    on the Kepler problem, e = 0.6, h = 2 pi/100, 1000 periods (100000
    steps): bounded energy error, angular momentum conserved to round-off,

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* test_spvi_systems.h -- test systems (analytic f and Df), an exact
    pendulum solution, a fixed-step loop and failure injection for the
    tests of the SPVI stepper (test_spvi*.c).  Header-only (static inline),

@@ -1,3 +1,6 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
 /* testutil.h -- a minimal check harness for the C tests of the core.
    Each test program counts its checks and ends with
    "<name>: N passed, M failed"; it exits non-zero when M > 0. */
