@@ -112,7 +112,7 @@
 ## the end-point error still follows the tolerance: on Kepler (e = 0.6,
 ## 10 periods, RelTol = AbsTol = 1e-4 to 1e-12) it shrinks at least 30
 ## times per factor 100, to a few 1e-12 at 1e-12, where the round-off of
-## the solves decides (2e-13 to 5e-12 for the orbit turned by angles up
+## the solves decides (6e-14 to 4.5e-12 for the orbit turned by angles up
 ## to 1.1e-14 rad, @file{tests/test_spvi.m}).  The step size follows
 ## the trend of the error over the last two accepted steps as well as its
 ## size (predictive control, see @code{help odeSE}): on the same runs at

@@ -837,6 +837,21 @@
 %! endfor
 
 %!test
+%! ## steps that MaxStep caps all along, where it divides the span: that
+%! ## many steps, as ode45 takes, with no sliver of the round-off that t
+%! ## gathered as a step of its own (t summed plainly left 9.4e-14 after
+%! ## 1e4 steps of 1e-4: 10002 rows)
+%! f = @(t, y) [y(2); 0];     # a free particle: MaxStep binds
+%! for i = 1:3
+%!   for t0 = [0, 1e8]
+%!     [t, ~] = solvers{i} (f, [t0, t0+1], [0; 1], odeset ("MaxStep", 1e-4));
+%!     assert (numel (t), 10001);
+%!     assert (t(end), t0 + 1);
+%!     assert (min (diff (t)) > 0.99e-4);
+%!   endfor
+%! endfor
+
+%!test
 %! ## InitialStep = Inf: the first step as long as MaxStep and TSPAN allow,
 %! ## as ode45 takes it; the same run as with that step given
 %! f = @(t, y) [y(2); -1e-4 * y(1)];

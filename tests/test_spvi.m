@@ -247,14 +247,14 @@
 ## ----------------------------------------------------------------- adaptive
 %!test
 %! ## Kepler e = 0.6, 10 periods at RelTol = AbsTol = 1e-12: end-point
-%! ## error 5.1e-12, in 24880 calls (the help: 2e-13 to 5e-12 as the
+%! ## error 3.4e-12, in 24880 calls (the help: 6e-14 to 4.5e-12 as the
 %! ## round-off falls)
 %! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
 %! s = odeSPVI (@kepler, [0 20*pi], y0, odeset ("RelTol", 1e-12, "AbsTol", 1e-12));
 %! assert (norm (s.y(:, end) - y0, Inf) < 1e-11);
 %! assert (s.stats.nfevals + 2 * s.stats.npds, 24880, 50);
 %! ## at this tolerance the round-off of the solves decides: the orbit
-%! ## turned by 1e-15 to 1.1e-14 rad ends 2.3e-13 to 3.7e-12 off
+%! ## turned by 1e-15 to 1.1e-14 rad ends 6.4e-14 to 4.5e-12 off
 %! err = zeros (1, 11);
 %! for k = 1:11
 %!   R = [cos(k*1e-15), -sin(k*1e-15); sin(k*1e-15), cos(k*1e-15)];

@@ -568,6 +568,7 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
   int jac_agreed = 0;         /* its checks that found Df right */
   double h_acc = 0, err_acc = 0;   /* the last accepted step (predictive
                                       control, control.c) */
+  double tcomp = 0;   /* adaptive: the steps' sum minus t (round-off) */
   for (;;)
     {
       double hs, tnew;
@@ -609,7 +610,9 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
              set below it ends the run here. */
           const double hmin = hmin_at (t);
           h = fmax (h, user_hmax ? fmin (hmin, hmax) : hmin);
-          if (h >= rem || rem - h <= 1e-10 * rem)
+          /* what would be left after this step joins it when it is
+             below the least step, or round-off of the span */
+          if (h >= rem || rem - h <= fmax (1e-10 * rem, hmin_at (tend)))
             {
               h = rem;
               last = 1;
@@ -621,8 +624,13 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
             }
           /* the step is the representable increment of t: where h is a
              few ulps of t, t + h rounds by up to half an ulp, which the
-             state would otherwise not follow */
-          tnew = last ? tend : t + r.dir * h;
+             state would otherwise not follow.  t is summed with the
+             rounding of the earlier steps carried along (tcomp, as
+             Octave's integrators sum t), so that steps of MaxStep where it
+             divides the span end on tend instead of leaving a sliver of
+             the accumulated round-off (9.4e-14 after 1e4 steps of 1e-4
+             from 0) for a step of its own */
+          tnew = last ? tend : t + (r.dir * h + tcomp);
           hs = tnew - t;
         }
       if (o->max_steps > 0 && sys->cnt.nsteps >= o->max_steps)
@@ -742,6 +750,12 @@ sym_integrate (const sym_stepper_type *type, sym_system *sys,
           t = tstop;
           result = SYM_STOP_EVENT;
           goto done;
+        }
+      if (! fixed)
+        {
+          /* the rounding of tnew = t + (dir h + tcomp), exactly (TwoSum) */
+          const double a = r.dir * h + tcomp, bv = tnew - t;
+          tcomp = last ? 0.0 : (t - (tnew - bv)) + (a - bv);
         }
       t = tnew;
       memcpy (y, ynew, (size_t) n * sizeof (double));

@@ -785,6 +785,60 @@ main (void)
     CHECK (fabs (S.y[S.nrows - 1][0] - cos (10.0)) < 1e-3, "value");
   }
 
+  /* adaptive steps that MaxStep caps all along, where it divides the
+     span: N steps, none a sliver.  t summed plainly left the round-off it
+     gathered (up to 1.9e-12 after 1e5 steps of 1e-5 from 0, and a few
+     ulps far from 0: 91 of 280 such runs of odeSV had a step too many)
+     for a step of its own */
+  {
+    const double t0s[] = { 0.0, 1.0, -3.7, 1e4, 1e8, -1e8 };
+    const double spans[] = { 1.0, 12.584366058104878, 1.6513676438767741 };
+    const long Ns[] = { 3, 455, 1412, 10000, 100000 };
+    int bad = 0, runs = 0;
+    double loose = 1.0;
+    for (int a = 0; a < 6; a++)
+      for (int b = 0; b < 3; b++)
+        for (int c = 0; c < 5; c++)
+          for (int dir = -1; dir <= 1; dir += 2)
+            {
+              setup (&sys, &hu, &o, &atol);
+              o.t0 = t0s[a];
+              o.tf = t0s[a] + dir * spans[b];
+              o.hmax = spans[b] / (double) Ns[c];
+              o.h0 = o.hmax;
+              o.rtol = 1.0;       /* so that MaxStep binds (the pretend */
+              o.atol = &loose;    /* error is 1e-3 h^3) */
+              st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+              double least = INFINITY;
+              for (int i = 1; i < S.nrows; i++)
+                least = fmin (least, fabs (S.t[i] - S.t[i - 1]));
+              runs++;
+              if (st != SYM_DONE || S.nrows != Ns[c] + 1
+                  || S.t[S.nrows - 1] != o.tf || least < 0.5 * o.hmax)
+                {
+                  if (bad++ < 5)
+                    printf ("  t0 %g, tf %.17g, N %ld: %s, %d rows, least "
+                            "step %.3g of %.3g\n", o.t0, o.tf, Ns[c],
+                            sym_status_name (st), S.nrows, least, o.hmax);
+                }
+            }
+    CHECK (bad == 0, "MaxStep dividing the span: %d of %d runs with a "
+           "step too many or too short", bad, runs);
+    /* a MaxStep short of dividing the span by less than the least step
+       (16 ulps of t): what is left joins the last step.  At t = 1e8,
+       1000 steps of 1e-3 (1 - 2e-8) leave 2e-8, 1 to 2 ulps there. */
+    setup (&sys, &hu, &o, &atol);
+    o.t0 = 1e8;
+    o.tf = 1e8 + 1;
+    o.hmax = 1e-3 * (1 - 2e-8);
+    o.h0 = o.hmax;
+    o.rtol = 1.0;
+    o.atol = &loose;
+    st = sym_integrate (&exact_type, &sys, &mo, &o, y0, &tr);
+    CHECK (st == SYM_DONE && S.nrows == 1001 && S.t[1000] == o.tf,
+           "a remainder below the least step: %d rows", S.nrows);
+  }
+
   /* NaN after t = 1: adaptive gives up with ENONFINITE, rows up to ~1 */
   {
     setup (&sys, &hu, &o, &atol);
