@@ -343,18 +343,18 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "MaxNewtonIterations must be between 1 and 1000, got 0", f, [0 1], y0, struct ("MaxNewtonIterations", 0));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Refine must be between 1 and .*, got 0", f, [0 1], y0, struct ("Refine", 0));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Refine must be an integer, got 2.5", f, [0 1], y0, struct ("Refine", 2.5));
-%!test check_bad (all3, "Octave:invalid-input-arg", "NormControl must be \"on\" or \"off\", got 1x5 char", f, [0 1], y0, struct ("NormControl", "maybe"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "NormControl must be \"on\" or \"off\", got \"maybe\"", f, [0 1], y0, struct ("NormControl", "maybe"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Stats must be \"on\" or \"off\", got 1x1 complex double", f, [0 1], y0, struct ("Stats", 5i));
-%!test check_bad (all3, "Octave:invalid-input-arg", "Separable must be \"on\" or \"off\", got 1x1 char", f, [0 1], y0, struct ("Separable", "x"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Separable must be \"on\" or \"off\", got \"x\"", f, [0 1], y0, struct ("Separable", "x"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "NormControl must be \"on\" or \"off\", got 1x1 double", f, [0 1], y0, struct ("NormControl", NaN));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Stats must be \"on\" or \"off\", got 2x1 char", f, [0 1], y0, struct ("Stats", ["o"; "n"]));
-%!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got 1x3 char", f, [0 1], y0, struct ("NewtonMatrix", "old"));
+%!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got \"old\"", f, [0 1], y0, struct ("NewtonMatrix", "old"));
 %!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got 1x1 double", f, [0 1], y0, struct ("NewtonMatrix", 1));
-%!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got 1x9 char", f, [0 1], y0, struct ("NewtonMatrix", "automatic"));
+%!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got \"automatic\"", f, [0 1], y0, struct ("NewtonMatrix", "automatic"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Vectorized must be \"on\" or \"off\", got 1x2 double", f, [0 1], y0, struct ("Vectorized", [1 1]));
-%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold indices between 1 and 2, got 0", f, [0 1], y0, struct ("OutputSel", [0 1]));
-%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold indices between 1 and 2, got 1.5", f, [0 1], y0, struct ("OutputSel", 1.5));
-%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold indices between 1 and 2, got 5", f, [0 1], y0, struct ("OutputSel", 5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold integer indices between 1 and 2, got 0", f, [0 1], y0, struct ("OutputSel", [0 1]));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold integer indices between 1 and 2, got 1.5", f, [0 1], y0, struct ("OutputSel", 1.5));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must hold integer indices between 1 and 2, got 5", f, [0 1], y0, struct ("OutputSel", 5));
 %!test check_bad (all3, "Octave:invalid-input-arg", "OutputSel must be a vector of indices into Y0, got 1x1 cell", f, [0 1], y0, struct ("OutputSel", {{1}}));
 %!test check_bad (all3, "Octave:invalid-input-arg", "a logical OutputSel must have 2 elements \\(one per element of Y0\\), got 1$", f, [0 1], y0, struct ("OutputSel", true));
 

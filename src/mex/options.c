@@ -112,12 +112,32 @@ symmex_num (char *buf, size_t len, const char *fmt, double x)
   return buf;
 }
 
+/* A one-row text of 1 to 39 characters, into name: 1; else 0. */
+static int
+short_text (const mxArray *v, char *name, size_t len)
+{
+  return mxIsChar (v) && mxGetNumberOfDimensions (v) == 2
+         && mxGetM (v) == 1 && mxGetN (v) > 0 && mxGetN (v) < len
+         && ! mxGetString (v, name, len);
+}
+
+const char *
+symmex_describe_word (const mxArray *v, char *buf, size_t len)
+{
+  char word[40];
+  if (short_text (v, word, sizeof word))
+    {
+      snprintf (buf, len, "\"%s\"", word);
+      return buf;
+    }
+  return symmex_describe (v, buf, len);
+}
+
 const char *
 symmex_describe_fn (const mxArray *v, char *buf, size_t len)
 {
   char name[40];
-  if (mxIsChar (v) && mxGetM (v) == 1 && mxGetN (v) > 0
-      && mxGetN (v) < sizeof name && ! mxGetString (v, name, sizeof name))
+  if (short_text (v, name, sizeof name))
     {
       snprintf (buf, len, "\"%s\", which names no function", name);
       return buf;
@@ -194,7 +214,7 @@ on_off (const char *solver, const mxArray *v, const char *name)
     return mxIsLogical (v) ? mxGetLogicals (v)[0] != 0 : elem (v, 0) != 0;
   char buf[64];
   mexErrMsgIdAndTxt (BADARG, "%s: %s must be \"on\" or \"off\", got %s",
-                     solver, name, symmex_describe (v, buf, sizeof buf));
+                     solver, name, symmex_describe_word (v, buf, sizeof buf));
   return 0;
 }
 
@@ -324,8 +344,8 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
           {
             double x = elem (v, i);
             if (x != floor (x) || x < 1 || x > n)
-              mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must hold indices "
-                                 "between 1 and %d, got %s", solver, n,
+              mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must hold integer "
+                                 "indices between 1 and %d, got %s", solver, n,
                                  SYMMEX_NUM (x, "%g"));
             o->outputsel[o->noutputsel++] = (int) x - 1;
           }
@@ -441,7 +461,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
               char what[64];
               mexErrMsgIdAndTxt (BADARG, "%s: NewtonMatrix must be \"auto\", "
                                  "\"kept\" or \"new\", got %s", solver,
-                                 symmex_describe (vm, what, sizeof what));
+                                 symmex_describe_word (vm, what, sizeof what));
             }
           o->newton_matrix = name_eq (buf, "kept") ? SYM_MATRIX_KEPT
                              : name_eq (buf, "new") ? SYM_MATRIX_NEW

@@ -67,6 +67,9 @@ int symmex_is_vector (const mxArray *a);
 /* "1x2 double", "2x2 sparse double", "1x1 complex double", "1x3 char": what
    the user gave, for messages (into buf, returned) */
 const char *symmex_describe (const mxArray *v, char *buf, size_t len);
+/* the same for a value that should be a word ("on", "kept"): a short
+   text in quotes, "maybe" */
+const char *symmex_describe_word (const mxArray *v, char *buf, size_t len);
 /* the same for a value that should be a function; a name in quotes */
 const char *symmex_describe_fn (const mxArray *v, char *buf, size_t len);
 
