@@ -112,37 +112,32 @@ symmex_num (char *buf, size_t len, const char *fmt, double x)
   return buf;
 }
 
-/* A one-row text of 1 to 39 characters, into name: 1; else 0. */
-static int
-short_text (const mxArray *v, char *name, size_t len)
+/* A one-row text of 1 to 39 characters in quotes, then after; anything
+   else as symmex_describe gives it */
+static const char *
+describe_text (const mxArray *v, char *buf, size_t len, const char *after)
 {
-  return mxIsChar (v) && mxGetNumberOfDimensions (v) == 2
-         && mxGetM (v) == 1 && mxGetN (v) > 0 && mxGetN (v) < len
-         && ! mxGetString (v, name, len);
+  char text[40];
+  if (mxIsChar (v) && mxGetNumberOfDimensions (v) == 2 && mxGetM (v) == 1
+      && mxGetN (v) > 0 && mxGetN (v) < sizeof text
+      && ! mxGetString (v, text, sizeof text))
+    {
+      snprintf (buf, len, "\"%s\"%s", text, after);
+      return buf;
+    }
+  return symmex_describe (v, buf, len);
 }
 
 const char *
 symmex_describe_word (const mxArray *v, char *buf, size_t len)
 {
-  char word[40];
-  if (short_text (v, word, sizeof word))
-    {
-      snprintf (buf, len, "\"%s\"", word);
-      return buf;
-    }
-  return symmex_describe (v, buf, len);
+  return describe_text (v, buf, len, "");
 }
 
 const char *
 symmex_describe_fn (const mxArray *v, char *buf, size_t len)
 {
-  char name[40];
-  if (short_text (v, name, sizeof name))
-    {
-      snprintf (buf, len, "\"%s\", which names no function", name);
-      return buf;
-    }
-  return symmex_describe (v, buf, len);
+  return describe_text (v, buf, len, ", which names no function");
 }
 
 /* Element i of a real numeric array as double. */
