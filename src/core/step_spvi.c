@@ -965,12 +965,16 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
      finite differences 1.57 calls per step instead of 2.37; with the
      Hessian as FCN's second output and single calls 3 + 1.71 calls per
      step instead of 6.54 + 0.57, but those 3 calls also compute the
-     Hessian, so whether that pays depends on its cost (in time the same
-     on Kepler, 2.6 times slower on the FPU chain, d = 1; bench/): hence
+     Hessian, so whether that pays depends on its cost (in time 1.1 times
+     slower on Kepler, 2.9 on the FPU chain, d = 1; bench/ P1, P6n): hence
      not by default.  The same accuracy (every step within 2.9e-16 of a
      tightly converged solve; the pairs (2,1) to (11,10) on Kepler and the
      pendulum within 1.3x of the kept matrix's differences; no drift of
-     energy, see newton.c). */
+     energy, see newton.c).  Nor only on the steps after one whose start
+     was far (|x - start| > X S; Kepler, 20 periods, rhs + jac calls and
+     time per step, 88 us for the kept matrix): X = 1e-6 6.60, 90 us;
+     1e-8 6.27, 95 us; 1e-9 5.82, 94 us; X = 0 (every step) 4.71, 98 us.
+     Each call saved is a call that computes the Hessian instead. */
   const int every = fast && method
                     && (s->newmat == SYM_MATRIX_NEW
                         || (s->newmat == SYM_MATRIX_AUTO && N <= SPVI_EVERY_N
