@@ -50,7 +50,9 @@
 ## @code{odeSE} and @code{odeSV} then take explicit steps.  Default
 ## @qcode{"off"}.
 ## @item NewtonTol
-## Stopping tolerance of Newton's method, relative to the size of y.
+## Stopping tolerance of Newton's method, relative to the size of q for
+## the unknowns of q and to the size of p for those of p (in the units of
+## each).
 ## Default 1e-14.  Fixed steps are converged to NewtonTol/100
 ## (@code{odeSPVI}) and NewtonTol/1000 (@code{odeSE}, @code{odeSV}).
 ## @item MaxNewtonIterations

@@ -338,7 +338,7 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "MaxSteps must be between 1 and .*, got 0", f, [0 1], y0, struct ("MaxSteps", 0));
 %!test check_bad (all3, "Octave:invalid-input-arg", "MaxSteps must be an integer, got 1.5", f, [0 1], y0, struct ("MaxSteps", 1.5));
 %!test check_bad (all3, "Octave:invalid-input-arg", "NewtonTol must be a positive finite scalar, got 0", f, [0 1], y0, struct ("NewtonTol", 0));
-%!test check_bad (all3, "Octave:invalid-input-arg", "NewtonTol must be below 1 \\(it is relative to the size of y\\), got 1$", f, [0 1], y0, struct ("NewtonTol", 1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "NewtonTol must be below 1 \\(it is relative to the size of q or p\\), got 1$", f, [0 1], y0, struct ("NewtonTol", 1));
 %!test check_bad (all3, "Octave:invalid-input-arg", "NewtonTol must be below 1 .*got 1e\\+300", f, [0 1], y0, struct ("NewtonTol", 1e300));
 %!test check_bad (all3, "Octave:invalid-input-arg", "MaxNewtonIterations must be between 1 and 1000, got 0", f, [0 1], y0, struct ("MaxNewtonIterations", 0));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Refine must be between 1 and .*, got 0", f, [0 1], y0, struct ("Refine", 0));

@@ -18,7 +18,8 @@
    property of the problem near its solution: it is measured as |dx_2| /
    |dx_1|^2 whenever a second correction is made with that matrix and
    |dx_2| is well above round-off (NEWTON_QUAD_INFO times the round-off
-   floor, so that no decision follows the last bits of G), and it serves
+   floor: at 10 times it, |dx_2| still carried 5% of noise from the last
+   bits of G, and the decisions it fed with them), and it serves
    the next solves.  Measured with SPVI on Kepler e = 0.6, (4,3), h =
    2 pi/100 (tests/c/test_spvi_kepler.c): the error after the first
    correction divided by |dx_1|^2 stays within 1e-3..1e-1 wherever it is
@@ -41,7 +42,7 @@
 
 #define NEWTON_QUAD_SAFE 100.0
 #define NEWTON_QUAD_AGE 16
-#define NEWTON_QUAD_INFO 10.0
+#define NEWTON_QUAD_INFO 100.0
 
 extern void dgetrf_ (const int *m, const int *n, double *a, const int *lda,
                      int *ipiv, int *info);

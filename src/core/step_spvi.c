@@ -175,6 +175,12 @@
    40 us, two callbacks of Octave; that of 600 (d = 100) takes 12 ms */
 #define SPVI_EVERY_N 64
 
+/* The scales of Newton's stopping test: of the a_i (increments of q)
+   and of the P_j, and the larger of the two */
+typedef struct {
+  double q, p, all;
+} spvi_scale;
+
 /* One (n, m) discretization with its own Newton solver: the method, and
    (n + 1, m + 1) for the error estimate. */
 typedef struct {
@@ -197,6 +203,9 @@ typedef struct {
   double *wk;          /* 2d (work) */
   sym_newton nw;
   double h_mat;        /* h of the kept matrix */
+  int extra;           /* corrections of slow solves beyond
+                          SPVI_REFRESH_ITERS since its Jacobians were
+                          evaluated */
   double h_kq;         /* h at which nw.kq was measured */
   /* node Jacobians as evaluated: the latest (Ae[0]) and the one before
      (Ae[1]), at the nodes of the steps (te, he); te from the start of the
@@ -231,8 +240,9 @@ typedef struct {
   double *emis;        /* 2d: y1 - u(1), the end mismatch (see spvi_dense) */
   int M, have_fe0, have_fe1, have_emis;
   int ends_bad;        /* f at an end is NaN or Inf: the polynomials */
-  double noise;        /* accuracy of a and P: the solve's tolerance
-                          times its scale (at least eps times it) */
+  double noise_q, noise_p;  /* accuracy of a and of P: the solve's
+                          tolerance times their scales (at least eps
+                          times them) */
 } spvi_rec;
 
 typedef struct {
@@ -267,6 +277,9 @@ typedef struct {
   double *dhist;
   int nhist;
   double hhist;
+  /* the largest sizes of q and of p in the steps solved so far (see
+     start_scale) */
+  double typ_q, typ_p;
   /* the last step spvi_clock was given */
   double ck_t, ck_h, ck_tend;
   int ck_ok;
@@ -551,6 +564,7 @@ core_matrix (void *ctx, const double *x, double *M)
     }
   core_keep (c);
   core_fill (c, M);
+  c->extra = 0;
   return SYM_SUCCESS;
 }
 
@@ -928,7 +942,8 @@ core_move_error (spvi_core *c, double S)
    (2,3); tests/test_spvi.m). */
 static int
 core_solve (spvi_core *c, sym_system *sys, double t, double h,
-            const double *yk, double S, const spvi_state *s, double tol,
+            const double *yk, const spvi_scale *S, const spvi_state *s,
+            double tol,
             double *yend)
 {
   const int d = c->d, n = c->n, m = c->m, N = c->N;
@@ -993,7 +1008,7 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
   else if (fast && ! method)
     core_borrow (c, &s->lo, sys);
   for (int i = 0; i < N; i++)
-    c->scale[i] = S;
+    c->scale[i] = i < (n - 1) * d ? S->q : S->p;
   /* The returned x is the one after the last correction (no residual
      follows it), so the stopping test theta/(1-theta) |dx| <= tol bounds
      the error of the result itself: with tol/100 it is as accurate as the
@@ -1034,7 +1049,7 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
      move are those at xf itself: its error is the quadratic remainder,
      of the order that sym_newton's estimate kq |dx_1|^2 has bounded. */
   for (int k = 0; ! st && fast && ! c->nw.one && k < SPVI_MOVE_MAX
-                  && core_move_error (c, S) > c->nw.tol; k++)
+                  && core_move_error (c, S->p) > c->nw.tol; k++)
     {
       if ((st = core_residual (c, c->x, c->nw.r)))
         break;
@@ -1078,9 +1093,19 @@ core_solve (spvi_core *c, sym_system *sys, double t, double h,
      jac.  A quarter fewer matrices for 0.1 more calls; with
      finite-difference Jacobians (each 2d rhs calls per node) it is 0.5-0.6
      calls fewer: 9.39, 7.17, 11.44 rhs calls against 9.93, 7.64, 12.08. */
-  if (fast ? c->nw.iters > SPVI_REFRESH_ITERS
-             && ! (c->ndx >= 2 && c->dxn[1] <= SPVI_THETA_FRESH * c->dxn[0])
-           : c->nw.iters > 3)
+  if (fast && c->nw.iters > SPVI_REFRESH_ITERS
+      && ! (c->ndx >= 2 && c->dxn[1] <= SPVI_THETA_FRESH * c->dxn[0]))
+    {
+      /* the extra corrections must have cost as many calls as new node
+         Jacobians: as many as one correction with the user's Jacobian
+         (the same as refreshing at once), 2d times as many with finite
+         differences (by single calls; Vectorized takes the same steps) */
+      c->extra += c->nw.iters - SPVI_REFRESH_ITERS;
+      const int cost = sys->jac || sys->rhs_jac ? 1 : 2 * d;
+      if (c->extra >= cost)
+        sym_newton_invalidate (&c->nw);
+    }
+  else if (! fast && c->nw.iters > 3)
     sym_newton_invalidate (&c->nw);
 
   /* F is at xf, the iterate before the last correction: f_p += Apq dQ +
@@ -1485,9 +1510,9 @@ predict_modes (spvi_state *s, const spvi_rec *r, double zmax, double ynorm)
     amp += fabs (s->lv[i]) + 1.0;
   for (int i = 0; i < m + 2; i++)
     amp += (2.0 * i + 1.0) * fabs (s->lv[i]);
-  if (! (amp * r->noise > SPVI_PRED_NOISE * ynorm))
+  if (! (amp * fmax (r->noise_q, r->noise_p) > SPVI_PRED_NOISE * ynorm))
     return m + 1;
-  int kq = top_mode (r->a, n - 1, d, 0, 0, r->noise) + 1;
+  int kq = top_mode (r->a, n - 1, d, 0, 0, r->noise_q) + 1;
   memset (s->ach + (size_t) kq * d, 0,
           (na - (size_t) kq * d) * sizeof (double));
   /* p's Legendre coefficients (degree m + 1) by Gauss quadrature */
@@ -1503,7 +1528,7 @@ predict_modes (spvi_state *s, const spvi_rec *r, double zmax, double ynorm)
             s->pc[(size_t) i * d + k] += c * s->vq[k];
         }
     }
-  return top_mode (s->pc, m + 2, d, 1, 1, r->noise);
+  return top_mode (s->pc, m + 2, d, 1, 1, r->noise_p);
 }
 
 /* Whether the polynomial prediction in s->lo.x of the step continuing r
@@ -1580,34 +1605,49 @@ predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
     }
 }
 
-/* One scale for all unknowns of the step from y starting at s->lo.x: the
-   size of the state over the step.  A per-component scale cannot be met
-   below the round-off that f's coupling carries from the large
-   components into the small ones (the iteration would stagnate and
-   fail), and the a_i (increments of q) and P_j are all measured against
-   it: q_{k+1} and p_{k+1} are then converged to tol relative to |y|. */
-static double
-start_scale (const spvi_state *s, const double *y)
+/* The scales of the step from y starting at s->lo.x: the size of q
+   (|q_k|, |q_{k+1}|, and the largest of the steps before) for the a_i,
+   the size of p (|p_k|, |P_j|, likewise) for the P_j, so that a block
+   passing through zero keeps the scale of its size in the run; a block
+   of zeros takes the other's size (1 if both are zero).  Fixed steps converge each block to round-off of its own size,
+   so that conservation does not depend on the units of q and p (with
+   one scale for all, P_j of 1e-6 the size of q were left off by 1e-6
+   of their size).  Within a block one scale serves all components: a
+   per-component scale cannot be met below the round-off that f's
+   coupling carries from the large components into the small ones.
+   Adaptive steps take the larger size for both blocks (adaptive=1):
+   their solves stop at an absolute accuracy set by the tolerances. */
+static spvi_scale
+start_scale (spvi_state *s, const double *y, int adaptive)
 {
   const int d = s->d, n = s->n, m = s->m;
   const double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
-  double qend = 0.0;
+  double sq = 0.0;
   for (int k = 0; k < d; k++)
     {
       double v = y[k];
       for (int i = 1; i < n; i += 2)
         v += 2.0 * a[(size_t) (i - 1) * d + k];
-      qend = fmax (qend, fabs (v));
+      sq = fmax (sq, fmax (fabs (v), fabs (y[k])));
     }
-  double sc = fmax (inf_norm (2 * d, y), fmax (qend, inf_norm (m * d, P)));
-  return sc > 0 ? sc : 1.0;
+  double sp = fmax (inf_norm (d, y + d), inf_norm (m * d, P));
+  spvi_scale S;
+  S.all = fmax (sq, sp) > 0 ? fmax (sq, sp) : 1.0;
+  if (isfinite (sq) && isfinite (sp))
+    {
+      s->typ_q = sq = fmax (sq, s->typ_q);
+      s->typ_p = sp = fmax (sp, s->typ_p);
+    }
+  S.q = adaptive || ! (sq > 0) ? S.all : sq;
+  S.p = adaptive || ! (sp > 0) ? S.all : sp;
+  return S;
 }
 
 /* The start of Newton for the step (t, h, y) into s->lo.x; returns the
-   scale of the stopping test in *S. */
+   scales of the stopping test in *S (adaptive: see start_scale). */
 static int
 predict (spvi_state *s, sym_system *sys, double t, double h, const double *y,
-         int euler, double *S)
+         int euler, int adaptive, spvi_scale *S)
 {
   const int d = s->d, n = s->n, m = s->m;
   double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
@@ -1649,7 +1689,7 @@ predict (spvi_state *s, sym_system *sys, double t, double h, const double *y,
                                       * s->f0[d + k];
         }
     }
-  *S = start_scale (s, y);
+  *S = start_scale (s, y, adaptive);
   return SYM_SUCCESS;
 }
 
@@ -1713,6 +1753,17 @@ predict_history (spvi_state *s, double h)
       s->lo.x[i] += XC[best_l][l] * s->dhist[(size_t) l * N + i];
 }
 
+/* The accuracy of the solved a and P of r, by tol (pairs n - 1 = m) or
+   the Newton tolerance */
+static void
+rec_noise (const spvi_state *s, spvi_rec *r, double tol,
+           const spvi_scale *S)
+{
+  const double e = fmax (s->n - 1 == s->m ? tol : s->tol, DBL_EPSILON);
+  r->noise_q = e * S->q;
+  r->noise_p = e * S->p;
+}
+
 /* A fixed step whose Newton failed from both starts (continued and
    Euler) is reached from shorter ones: the step h/2^k from the Euler
    start for the smallest k <= SPVI_HALVINGS that converges, then each
@@ -1727,7 +1778,7 @@ predict_history (spvi_state *s, double h)
    *S. */
 static int
 spvi_lengthen (spvi_state *s, sym_system *sys, double t, double h,
-               double tol, double *S)
+               double tol, spvi_scale *S)
 {
   spvi_rec *tr = s->trial;
   const int d = s->d, na = (s->n - 1) * d;
@@ -1735,9 +1786,9 @@ spvi_lengthen (spvi_state *s, sym_system *sys, double t, double h,
   int k, st = SYM_NEWTON_FAIL;
   for (k = 1; k <= SPVI_HALVINGS && st == SYM_NEWTON_FAIL; k++)
     {
-      st = predict (s, sys, t, ldexp (h, -k), y, 1, S);
+      st = predict (s, sys, t, ldexp (h, -k), y, 1, 0, S);
       if (! st)
-        st = core_solve (&s->lo, sys, t, ldexp (h, -k), y, *S, s, tol,
+        st = core_solve (&s->lo, sys, t, ldexp (h, -k), y, S, s, tol,
                          tr->y1);
     }
   /* solved h/2^(k-1); then h/2^(k-2), ..., h */
@@ -1745,10 +1796,10 @@ spvi_lengthen (spvi_state *s, sym_system *sys, double t, double h,
     {
       memcpy (tr->a, s->lo.x, (size_t) na * sizeof (double));
       memcpy (tr->P, s->lo.x + na, (size_t) s->m * d * sizeof (double));
-      tr->noise = fmax (s->n - 1 == s->m ? tol : s->tol, DBL_EPSILON) * *S;
+      rec_noise (s, tr, tol, S);
       predict_poly (s, tr, -1.0, 2.0, inf_norm (2 * d, y));
-      *S = start_scale (s, y);
-      st = core_solve (&s->lo, sys, t, ldexp (h, -k), y, *S, s, tol,
+      *S = start_scale (s, y, 0);
+      st = core_solve (&s->lo, sys, t, ldexp (h, -k), y, S, s, tol,
                        tr->y1);
     }
   return st;
@@ -1797,8 +1848,8 @@ spvi_step (void *state, sym_system *sys, double t, double h, double tend,
   spvi_clock (s, t, h, tend);
   spvi_rec *tr = s->trial;
   memcpy (tr->y0, y, (size_t) nn * sizeof (double));
-  double S;
-  int st = predict (s, sys, t, h, tr->y0, 0, &S);
+  spvi_scale S;
+  int st = predict (s, sys, t, h, tr->y0, 0, yerr != NULL, &S);
   if (st)
     return st;
   predict_history (s, h);
@@ -1821,9 +1872,9 @@ spvi_step (void *state, sym_system *sys, double t, double h, double tend,
   const double tol_rf = SYM_FIXED_TOL * s->tol;
   const double w = yerr && s->est_rtol > 0
                    ? sym_error_floor (nn, y, s->est_rtol, s->est_atol) : 0.0;
-  const double tol_lo = fmax (tol_rf, SPVI_EST_LO * w / S);
-  const double tol_hi = fmax (tol_rf, SPVI_EST_HI * w / S);
-  st = core_solve (&s->lo, sys, t, h, tr->y0, S, s, tol_lo, tr->y1);
+  const double tol_lo = fmax (tol_rf, SPVI_EST_LO * w / S.all);
+  const double tol_hi = fmax (tol_rf, SPVI_EST_HI * w / S.all);
+  st = core_solve (&s->lo, sys, t, h, tr->y0, &S, s, tol_lo, tr->y1);
   if (st == SYM_NEWTON_FAIL && s->pred_cont && ! yerr)
     {
       /* The continued start was too far off (the pairs n - 1 < m, whose
@@ -1838,11 +1889,12 @@ spvi_step (void *state, sym_system *sys, double t, double h, double tend,
          (4,8) likewise, and (21,20) at h = 1 at t = 4; with the retry
          all three run through (tests/test_spvi.m).  (No estimate, so
          w = 0 and the tolerances do not depend on the new S.) */
-      st = predict (s, sys, t, h, tr->y0, 1, &S);
+      st = predict (s, sys, t, h, tr->y0, 1, 0, &S);
       if (! st)
         {
           predict_history (s, h);
-          st = core_solve (&s->lo, sys, t, h, tr->y0, S, s, tol_lo, tr->y1);
+          st = core_solve (&s->lo, sys, t, h, tr->y0, &S, s, tol_lo,
+                           tr->y1);
         }
     }
   /* Fixed steps only, as above */
@@ -1859,7 +1911,7 @@ spvi_step (void *state, sym_system *sys, double t, double h, double tend,
   tr->has_dq = 0;
   tr->M = 0;
   tr->have_fe0 = tr->have_fe1 = tr->have_emis = tr->ends_bad = 0;
-  tr->noise = fmax (n - 1 == m ? tol_lo : s->tol, DBL_EPSILON) * S;
+  rec_noise (s, tr, tol_lo, &S);
   if (n - 1 == m)
     rec_nodes (tr, &s->lo);
 
@@ -1873,7 +1925,7 @@ spvi_step (void *state, sym_system *sys, double t, double h, double tend,
         c->x[(size_t) (n - 1) * d + k] = 0.0;
       for (int j = 0; j < m + 1; j++)
         rec_p (s, tr, c->z[j], c->x + (size_t) n * d + (size_t) j * d);
-      st = core_solve (c, sys, t, h, tr->y0, S, s, tol_hi, yerr);
+      st = core_solve (c, sys, t, h, tr->y0, &S, s, tol_hi, yerr);
       if (st)
         return st;
       if (n - 1 == m)

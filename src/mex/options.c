@@ -389,7 +389,7 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
                   ? pos_scalar (solver, v, "NewtonTol", 0) : 0;
   if (! (o->newton_tol < 1))
     mexErrMsgIdAndTxt (BADARG, "%s: NewtonTol must be below 1 (it is "
-                       "relative to the size of y), got %s", solver,
+                       "relative to the size of q or p), got %s", solver,
                        SYMMEX_NUM (o->newton_tol, "%g"));
   o->max_newton = (v = field (solver, opts, "MaxNewtonIterations"))
                   ? (int) pos_integer (solver, v, "MaxNewtonIterations", 1,
