@@ -14,280 +14,97 @@
 ## @deftypefnx {} {} odeSE (@dots{})
 ## Solve Hamilton's equations with the symplectic Euler method (order 1).
 ##
-## For a Hamiltonian H(q, p) with q, p in R^d and an optional forcing term
-## F, @var{fcn} returns Hamilton's equations for y = [q; p]:
-##
-## @example
-## dy = fcn (t, y) = [dH/dp; -dH/dq + F(t, q, p)]
-## @end example
-##
-## @noindent
-## a column of length 2d (any real numeric class, or a row or sparse:
-## taken as a full double column; logical, char or complex values are
-## errors, as are NaN or Inf at t0).  The method is the variant with p
-## implicit and q
-## explicit:
+## The state is y = [q; p], q and p in R^d.  @var{fcn} returns Hamilton's
+## equations, @code{dy = fcn (t, y)} = [dH/dp; -dH/dq + F], a column of
+## length 2d; F(t, q, p) is an optional forcing term (-c*p for a damping).
+## For the pendulum, H = p^2/2 - cos(q):
+## @code{fcn = @@(t, y) [y(2); -sin(y(1))]}.  One step of size h is
 ##
 ## @example
 ## @group
-## p(k+1) = p(k) + h * (-dH/dq + F) (t(k), q(k), p(k+1))
-## q(k+1) = q(k) + h * dH/dp (t(k), q(k), p(k+1))
+## p(k+1) = p(k) + h * (-dH/dq + F) (t(k), q(k), p(k+1))     (implicit)
+## q(k+1) = q(k) + h * dH/dp (t(k), q(k), p(k+1))            (explicit)
 ## @end group
 ## @end example
 ##
 ## @noindent
-## It is symplectic and variational: with a fixed step its energy error
-## stays bounded over very long runs and it conserves the momenta of the
-## symmetries of H (angular momentum for a central force) to round-off.  A
-## forcing term gives the discrete Lagrange--d'Alembert (forced variational)
-## integrator.  The implicit equation for p(k+1) is solved by Newton's
-## method to near machine precision, started from the values of p(k+1) at
-## the last steps: the errors of an explicit start (p(k) + h f_p(t(k),
-## y(k)) when f there is known, else the last step's increment of p) over
-## up to 16 steps, extrapolated by the polynomial of degree (up to 14)
-## that would have predicted the newest of them best.  On a non-separable
-## H at a fixed step this makes a step cost about as many evaluations of
-## @var{fcn} as the explicit separable one (2.00 per step in
-## @file{tests/test_se_sv.m}, 4.0 from the explicit start alone; from
-## t0 = 1e8 the same).  A solve from there that fails (Newton, or
-## @var{fcn} NaN or asking for a smaller step) is tried again from the
-## explicit start.
+## and Newton's method solves it.  Its matrix needs the Hessian of H, taken
+## from the first of: the @code{Jacobian} option (df/dy), the
+## @code{HamiltonianHessFcn} option (a handle returning the Hessian), a
+## second output of @var{fcn}, @code{[dy, ddy] = fcn (t, y)} with ddy the
+## 2d-by-2d Hessian of H in y or its column-major vector (build it only
+## when @code{nargout > 1}), and finite differences of @var{fcn}.  For
+## H = T(p) + V(q) set @code{Separable} to @qcode{"on"}: the step is then
+## explicit, two calls of @var{fcn} and no Newton.
 ##
-## @strong{Arguments} are those of @code{ode45}: @var{tspan} = [t0, tf]
-## returns a row at every step; with more than two (strictly monotonic)
-## elements, rows exactly at those times, taken from the dense output
-## without shortening any step.  tf < t0 integrates backwards.  @var{y0} =
-## [q0; p0] is a real vector of even length (row or column).  @var{opts}
-## is a struct, or any empty value (@code{[]}, @code{@{@}}, an empty
-## string) for the defaults.  Extra arguments @var{par1}, @dots{} come
-## after it and are passed to @var{fcn} (and to the
-## Jacobian, Hessian, Events and OutputFcn functions) after t and y;
-## unlike Octave's @code{ode45}, a fourth argument that is neither a struct
-## nor empty is refused rather than taken as @var{par1} (pass [] before
-## the parameters).  @var{t} is a column; @var{y} has one row per time, in
-## double precision whatever the class of @var{tspan} and @var{y0}.  With
-## one output, @var{sol} is a struct with the fields of @code{ode45}:
-## @code{x} (row of times), @code{y} (one column per time),
-## @code{solver}, @code{xe}, @code{ye}, @code{ie} (with Events) and
-## @code{stats}.  With no output the solution is plotted with
-## @code{odeplot}.
+## @strong{Why a fixed step.}  With @code{TimeStepSize} (or
+## @code{TimeStepNumber}) every step is one and the same symplectic map,
+## and such a map follows the exact flow of a modified Hamiltonian within
+## O(h) of H: the energy error oscillates at size O(h) and does not drift,
+## however long the run, and the momenta of the symmetries of H (angular
+## momentum for a central force) are conserved to round-off.  Adaptive
+## steps, the default as in @code{ode45}, control the local error
+## instead; a new step size is a new map, so this guarantee is lost, and
+## on fast oscillations the step sizes lock to their phase and can drain
+## their energy.  For long runs use a fixed step.
 ##
-## @strong{Options} (@code{odeset} fields, or @code{symplecticset} for the
-## package's own fields without warnings; names match in any case, and a
-## struct that sets one of these options in two spellings is refused):
+## @var{tspan} is [t0, tf] (a row at every step) or more times (rows
+## exactly there, from the dense output, steps unchanged); tf < t0 runs
+## backwards.  @var{opts} comes from @code{symplecticset} or
+## @code{odeset} ([] for the defaults); @var{par1}, @dots{} are passed to
+## @var{fcn} and the other functions after t and y.  @var{t} is a column
+## and @var{y} has a row per time.  @var{sol} has the fields of
+## @code{ode45}: x, y, solver, xe, ye, ie (with Events) and stats.  With
+## no output the solution is plotted with @code{odeplot}.
 ##
 ## @table @code
 ## @item TimeStepSize, TimeStepNumber
-## Fixed step h (the last step ends exactly on tf) or a fixed number of
-## steps: no error control; the geometric guarantees hold in this mode.
-## Every step is h itself, the same map at any t, and ends at t0 + k h
-## rounded once (the rows' times), so a run from t0 = 1e8 takes the same
-## steps as one from 0; only a last step that h does not fit ends on tf
-## with what is left of the span.  Without them the step is adaptive.
+## Fixed step h, or a number of fixed steps.  The last step ends on tf.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
-## Adaptive mode, scaled as in @code{ode45} (defaults 1e-3, 1e-6, off,
-## automatic, |tf-t0|/10; MaxStep = Inf: no cap; InitialStep = Inf: the
-## first step as long as MaxStep and @var{tspan} allow, as in
-## @code{ode45}).  The local error
-## estimate is the difference to the trapezoidal rule built from @var{fcn}
-## at both ends of the step, y(k+1) - y(k) - h/2 (f(k) + f(k+1)), of size
-## O(h^2) like the method's local error; it costs one evaluation of
-## @var{fcn} per step (shared with the next step).  After an accepted
-## step the next step is the smaller
-## of the classical choice, 0.9 (1/err)^(1/(p+1)) times the last, and the
-## one that follows the change of the error over the last two accepted
-## steps (predictive control), so that where the error grows along the
-## solution steps do not alternate between failed and accepted (the same
-## in all three solvers).  No step is shorter than 16 ulps of t (below
-## that the round-off of t swamps the step): a smaller step asked for by
-## the controller or by the default MaxStep is raised to it, so that spans
-## only a few ulps wide are integrated too; a step that fails at that size,
-## or a MaxStep set below it, ends the run with the warning
-## @qcode{"symplectic:step-size"}.  The times of the steps are summed
-## with their round-off carried along (as Octave's own solvers sum
-## them), and what would be left after a step joins it when it is below
-## the least step: steps of a MaxStep that divides the span end on
-## @var{tf}, that many of them, with no short last step (as in
-## @code{ode45}).  A MaxStep that would take more than
-## 1e12 steps is refused, as such a TimeStepSize is, and a RelTol below
-## 100*eps is raised to it with the warning @qcode{"symplectic:tolerance"}
-## (near t = 0 the least step bounds neither).
-## Adaptive steps of @code{odeSE} and @code{odeSV} do not keep the energy
-## of fast oscillations: the local error of an oscillating component
-## vanishes twice per period, the step sizes follow that phase, and a
-## step sequence locked to the phase moves the oscillation's energy
-## steadily.  On two oscillators of frequencies 1 and 100, the fast one
-## at amplitude 1e-3, over [0, 100] (@file{bench/adaptive_runs.m}), the
-## fast oscillator's energy at the end, relative to its start, is:
-##
-## @multitable @columnfractions .28 .18 .18 .18 .18
-## @headitem RelTol, AbsTol @tab @code{odeSE} @tab @code{odeSV} @tab @code{ode45} @tab @code{odeSPVI}
-## @item default @tab 0.011 @tab 3.64 @tab 0.555 @tab 1
-## @item 1e-3, 1e-3 @tab 1.4e-5 @tab 5.9e5 @tab 30.2 @tab 1
-## @item 1e-4, 1e-4 @tab 1.2e-6 @tab 74.9 @tab 0.95 @tab 1
-## @item 1e-6, 1e-6 @tab 5.4e-7 @tab 1.3 @tab 0.95 @tab 1
-## @end multitable
-##
-## @noindent
-## (@code{odeSPVI} within 6.3e-5 of 1 all along).  A fixed step keeps it:
-## @code{odeSV} with TimeStepSize = 0.002 stays within 0.01 of 1 (the
-## method's own oscillation of the energy, (w h)^2/4), however long the
-## run (@file{tests/test_se_sv.m}).  For such systems use a fixed step, or
-## @code{odeSPVI}.
+## Adaptive steps, as in @code{ode45} (defaults 1e-3, 1e-6, off,
+## automatic, |tf-t0|/10).  The error estimate is the distance to the
+## trapezoidal rule through the step's ends.
 ## @item Separable
-## @qcode{"on"} for H = T(p) + V(q) with no forcing that depends on p: the
-## step is explicit, two evaluations of @var{fcn} per step and no Newton.
-## Those two evaluations are at the same q and t with two values of p, so
-## a dH/dq (with the forcing) that changes with p shows there: the run
-## then warns, once, with the identifier @code{symplectic:not-separable}
-## (@code{odeSV}'s are at the same p with two q, so it warns when dH/dp
-## changes with q, or with t).  The explicit step of an H that is not
-## separable is not the method: of lower order, and not symplectic.
+## @qcode{"on"} for H = T(p) + V(q), with no forcing that depends on p.
+## An @var{fcn} that shows otherwise gets a warning.  Default
+## @qcode{"off"}.
 ## @item Jacobian, HamiltonianHessFcn
-## Newton's matrix needs df/dy = J * Hess(H), J = [0 I; -I 0], taken from
-## the first of: the @code{Jacobian} option (matrix or handle returning
-## df/dy); @code{HamiltonianHessFcn}, a handle returning Hess(H); a second
-## output of @var{fcn} giving Hess(H) (2d-by-2d or its column-major vector
-## of (2d)^2 elements, as in @code{[dy, ddy] = fcn (t, y)}); finite
-## differences of @var{fcn} (2d extra evaluations; steps of sqrt(eps)
-## times each component's size, the largest it has had in the run, and at
-## least 1e-6 times the largest size among q's components for q's, among
-## p's for p's: a problem and the same problem scaled take the same
-## steps; backward steps, all of them, where @var{fcn} is NaN or Inf at a
-## forward one, as at the edge of its domain).  With a forcing term the Hessian misses dF/dy and Newton
-## works as a quasi-Newton method; a
-## Hessian off by a moderate factor (0 to 10, or of the wrong sign) costs
-## iterations, not accuracy.  When Newton fails with the Jacobian or
-## Hessian given and it differs from finite differences of @var{fcn} at
-## the step's start by more than a tenth of their largest entry (a strong
-## damping, a wrong Jacobian), or when it has a NaN or Inf where
-## @var{fcn} is finite, finite differences serve for the rest of
-## the run and the step is tried again; @code{stats.jacobian_source} then
-## says from which t.  (At most three checks that agree are made in a
-## run: each costs a Jacobian and 2d+1 calls of @var{fcn}.)  Newton's
-## stopping test measures its corrections, so a matrix too large by many
-## orders of magnitude (1e12) would make them tiny and pass unconverged
-## steps as converged.  So the first Jacobian or Hessian given is probed
-## at its point, at the cost of two calls of @var{fcn} (one when it is
-## the second output of @var{fcn}): the change of @var{fcn} over a small
-## step along one direction (the opposite one where @var{fcn} is NaN or
-## Inf there; no probe if it is both ways) against df/dy times that
-## step.  When they
-## differ by more than 100 times the change, finite differences serve
-## from there on (@code{stats.jacobian_source} says from which t); a
-## matrix too small, of the wrong sign or missing dF/dy is left to the
-## check above.
-## @code{stats.jacobian_source} says which was used.  Sparse matrices
-## (here, in the other options, in @var{tspan}, @var{y0} and in what
-## @var{fcn} returns) are taken as full.
+## Sources of Newton's matrix (above); @code{sol.stats.jacobian_source}
+## says which one served.
 ## @item NewtonTol, MaxNewtonIterations
-## Newton's stopping tolerance (1e-14 relative) and iterations (10).  With
-## a fixed step (here and in @code{odeSV}) each solve is converged to
-## NewtonTol/1000: the Newton matrix is kept across steps, so the error a
-## stop leaves has the same sign from step to step and adds up.  On the
-## non-separable rotation-invariant H of @file{tests/test_se_sv.m} (h =
-## 0.05, 10000 steps) the angular momentum drifted at NewtonTol itself by
-## 1.5e-13 to 7.8e-13 (@code{odeSE} or @code{odeSV}, with the Hessian
-## given or finite differences); at NewtonTol/1000 it stays within 1e-14,
-## as round-off does, for at most 12% more calls.  A solve that stops on
-## a correction
-## of round-off size has f at the iterate before it, moved to the result
-## by the Jacobian (used unmoved, that error of a few ulps kept its sign
-## too: 1.5e-13 over 10000 steps with the Hessian given, 9e-15 moved).
-## In adaptive runs, NewtonTol.
-## @item Events, OutputFcn, OutputSel, Refine, Stats
-## As in @code{ode45}; also, scalar ISTERMINAL and DIRECTION hold for every
-## element of VALUE, @code{OutputSel} may be a logical mask, and the
-## options that take @qcode{"on"} or @qcode{"off"} take true or false too.
-## @code{OutputFcn} is called with the flag @qcode{"init"}, then
-## @qcode{""} with each row (an empty char; @code{ode45} passes [] there:
-## test it with @code{isempty}), then @qcode{"done"}.  A value that
-## @code{OutputFcn} returns stops the run when @code{if} would take it as
-## true (all its elements nonzero; a char too); NaN, and values other
-## than logical, char or real numeric, are errors.  Event times, output
-## times and refined rows come
-## from the dense output (cubic Hermite interpolation between steps, from
-## @var{fcn} at the step points).  An event counts where its function
-## changes sign or becomes zero (in the chosen direction) after t0,
-## between the points where the Events function is evaluated: the step
-## points (and in @code{odeSPVI}, whose steps are long, more points
-## inside each step: see its help).  Two zeros between two such points
-## (the function back to its sign) are not seen, as in @code{ode45};
-## @code{MaxStep} or a smaller TimeStepSize closes the gap.
-## A zero at t0 itself is not reported, a zero that touches without a
-## change of sign only when it falls on such a point.  An Events function
-## whose VALUE is empty at t0 gives no events; a NaN in VALUE is an error
-## (it has no sign); DIRECTION must hold -1, 0 or 1 (other values, which
-## @code{ode45} takes as a direction that never occurs, are errors).
-## Events located at the time of a terminal event (within the round-off
-## of their location) are reported with it.  @var{te} and @var{ie} are
-## columns, @var{ye} has a row per event (@code{sol.xe}, @code{sol.ye},
-## @code{sol.ie} likewise); with no event all three are 0-by-0, as in
-## @code{ode45}.
-## @code{Refine}
-## (default 1: step points only, where the method's properties hold) adds
-## interpolated rows between steps; as in @code{ode45} it is ignored with
-## more than two @var{tspan} elements and for the @var{sol} output.
-## @code{Stats} prints steps, failed
-## steps, @var{fcn} calls, Newton iterations, Jacobian/Hessian evaluations
-## and LU factorizations.  Whatever @code{Stats}, @code{sol.stats} holds
-## the counts: @code{nsteps} (accepted steps), @code{nfailed} (steps
-## tried again, for the error test or a Newton failure), @code{nfevals}
-## (calls of @var{fcn} for f, a Vectorized call counting once; those for
-## finite-difference matrices included), @code{nstates} (states those
-## calls evaluated: a Vectorized call of k columns counts k),
-## @code{nfdevals} (of @code{nfevals}, the calls for finite-difference
-## matrices and for the probe of a given Jacobian or Hessian), @code{npds}
-## (evaluations of the matrix given: calls of the Jacobian function or
-## of @code{HamiltonianHessFcn}, uses of a constant Jacobian matrix, or
-## calls of @var{fcn} for its second output), @code{nnewton} (Newton
-## iterations), @code{ndecomps} (LU factorizations), @code{nlinsols}
-## (linear solves with them) and @code{jacobian_source} (where Newton's
-## matrix came from).  @var{fcn} is called @code{nfevals + npds} times
-## when Newton's matrix comes from its second output, else
-## @code{nfevals} times.
+## Newton's relative tolerance (1e-14; fixed steps converge to
+## NewtonTol/1000) and iterations per solve (10).
 ## @item Vectorized
-## @qcode{"on"}: @var{fcn} accepts a 2d-by-k matrix of states with a 1-by-k
-## row of times.  @code{odeSE} steps one state at a time; its
-## finite-difference Jacobians (no Jacobian or Hessian source) then take one
-## call for their 2d perturbed states instead of 2d calls.
-## @item NonNegative, Mass
-## Not supported (a projection onto y >= 0 would break the symplectic map;
-## Hamilton's equations have no mass matrix): ignored with the warning
-## @qcode{"symplectic:unsupported-option"}.  The other fields of
-## @code{odeset} are hints for other solvers and are ignored.
+## @qcode{"on"}: @var{fcn} takes a 2d-by-k matrix of states and a 1-by-k
+## row of times; finite-difference matrices then take one call.
+## @item Events, OutputFcn, OutputSel, Refine, Stats
+## As in @code{ode45}.  Events are located on the dense output (cubic
+## Hermite between the step points); two zeros between two step points
+## are missed, as in @code{ode45} (a shorter step closes the gap).
+## @code{Refine} (default 1: step points only) adds interpolated rows.
+## @code{Stats} prints the counts that @code{sol.stats} holds.
+## @item MaxSteps
+## Largest number of steps of a run (default: no limit).
 ## @end table
 ##
-## A run that cannot go on (Newton fails with the fixed step or at the
-## smallest adaptive step, @var{fcn} keeps returning NaN, or a step's
-## result overflows, as an unstable fixed step's does in the end: that
-## step is refused) warns and returns every row computed so far, all
-## finite.  The warnings' identifiers are
-## @code{symplectic:newton-failed}, @code{symplectic:nonfinite},
-## @code{symplectic:step-size}, @code{symplectic:max-steps},
-## and @code{symplectic:output-stop} (OutputFcn asked to stop before tf;
-## no event after the row where it stopped is returned), and
-## @code{symplectic:tolerance} for a RelTol raised to 100*eps,
-## @code{symplectic:tspan-beyond-end} for output times after the end of
-## TimeStepNumber steps, @code{symplectic:not-separable} (see
-## @code{Separable}); an error in a
-## function of the user's ends the run with that error; bad
-## arguments raise errors with the identifier
-## @code{Octave:invalid-input-arg} whose message begins with the solver's
-## name, and a NaN or Inf from @var{fcn} at t0 (where no smaller step can
-## help) an error with the identifier @code{symplectic:nonfinite}.
+## A run that cannot go on (Newton fails, @var{fcn} returns NaN or Inf,
+## MaxSteps is reached) warns, with an identifier @code{symplectic:@dots{}},
+## and returns every row computed so far.
 ##
-## Example: a pendulum with a fixed step.
+## Example: the pendulum over 1000 time units with h = 0.05; the energy
+## error is as small at the end as at the start.
 ##
 ## @example
 ## @group
 ## pendulum = @@(t, y) [y(2); -sin(y(1))];
 ## opts = symplecticset ("TimeStepSize", 0.05);
-## [t, y] = odeSE (pendulum, [0 100], [1; 0], opts);
-## E = y(:,2).^2/2 - cos (y(:,1));   # bounded error, no drift
+## [t, y] = odeSE (pendulum, [0 1000], [1; 0], opts);
+## dE = abs (y(:,2).^2/2 - cos (y(:,1)) + cos (1));
+## printf ("energy error: %.1e in [0, 100], %.1e in [900, 1000]\n",
+##         max (dE(t <= 100)), max (dE(t >= 900)));
 ## @end group
 ## @end example
-## @seealso{odeSV, odeSPVI, symplecticset, ode45, odeset}
+## @seealso{odeSV, odeSPVI, symplecticset, ode45, odeset, odeplot}
 ## @end deftypefn
 
 function varargout = odeSE (varargin)
