@@ -12,64 +12,84 @@
 ## @deftypefnx {} {[@var{t}, @var{y}, @var{te}, @var{ye}, @var{ie}] =} odeSV (@dots{})
 ## @deftypefnx {} {@var{sol} =} odeSV (@dots{})
 ## @deftypefnx {} {} odeSV (@dots{})
-## Solve Hamilton's equations with the St@"ormer--Verlet method (order 2).
+## Solve Hamilton's equations with the symplectic St@"ormer--Verlet method
+## (order 2).
 ##
-## @var{fcn} returns Hamilton's equations for y = [q; p], q, p in R^d:
-## @code{dy = fcn (t, y) = [dH/dp; -dH/dq + F(t, q, p)]}, F an optional
-## forcing term.  One step:
+## The state is y = [q; p], q and p in R^d.  @var{fcn} returns Hamilton's
+## equations, @code{dy = fcn (t, y)} = [dH/dp; -dH/dq + F], a column of
+## length 2d; F(t, q, p) is an optional forcing term (the example below
+## writes Kepler's problem).  With fq = dH/dp and fp = -dH/dq + F, one
+## step of size h is
 ##
 ## @example
 ## @group
-## p(k+1/2) = p(k) + h/2 * fp (t(k), q(k), p(k+1/2))                  (implicit)
-## q(k+1)   = q(k) + h/2 * (fq (t(k), q(k), p(k+1/2))
-##                         + fq (t(k+1), q(k+1), p(k+1/2)))          (implicit)
-## p(k+1)   = p(k+1/2) + h/2 * fp (t(k+1), q(k+1), p(k+1/2))          (explicit)
+## p(k+1/2) = p(k) + h/2 fp(t(k), q(k), p(k+1/2))                (implicit)
+## q(k+1)   = q(k) + h/2 (fq(t(k), q(k), p(k+1/2))
+##                        + fq(t(k+1), q(k+1), p(k+1/2)))        (implicit)
+## p(k+1)   = p(k+1/2) + h/2 fp(t(k+1), q(k+1), p(k+1/2))
 ## @end group
 ## @end example
 ##
 ## @noindent
-## with fq = dH/dp and fp = -dH/dq + F.  The method is symplectic,
-## symmetric (time-reversible) and variational: with a fixed step its
-## energy error stays bounded (of size h^2) over very long runs, and the
-## momenta of the symmetries of H are conserved to round-off.  With
-## @code{Separable} @qcode{"on"} (H = T(p) + V(q)) it is the explicit
-## leapfrog: two evaluations of @var{fcn} per step, at the same p with two
-## q; a dH/dp that differs between them (H not separable) gets the
-## warning @code{symplectic:not-separable}.
+## The method is symmetric (time-reversible) as well as symplectic.  For
+## H = T(p) + V(q) set @code{Separable} to @qcode{"on"}: the step is then
+## the explicit leapfrog, two calls of @var{fcn} and no Newton.
+## Otherwise Newton's method solves the implicit stages; its matrix needs
+## the Hessian of H, taken from the first of: the @code{Jacobian} option
+## (df/dy), the @code{HamiltonianHessFcn} option, a second output of
+## @var{fcn}, @code{[dy, ddy] = fcn (t, y)} with ddy the 2d-by-2d Hessian
+## of H in y or its column-major vector (build it only when
+## @code{nargout > 1}), and finite differences of @var{fcn}.
 ##
-## The implicit equations for p(k+1/2) and q(k+1) are solved by Newton's
-## method started, as in @code{odeSE}, from their values at the last steps
-## (the errors of the explicit starts p(k) + (h/2) f_p(t(k), q(k),
-## p(k-1/2)), exact for a separable H, and q(k) + h f_q(t(k), q(k),
-## p(k+1/2)), extrapolated): on the non-separable H of
-## @file{tests/test_se_sv.m} at h = 0.01, 3.96 evaluations of @var{fcn}
-## per step (8.0 from the explicit starts alone).
+## @strong{Why a fixed step.}  With @code{TimeStepSize} (or
+## @code{TimeStepNumber}) every step is one and the same symplectic map,
+## which follows the exact flow of a modified Hamiltonian within O(h^2)
+## of H: the energy error oscillates at size O(h^2) without drift however
+## long the run, and the momenta of the symmetries of H are conserved to
+## round-off.  Adaptive steps (the default) control the local error
+## instead; each new step size is a new map, and on fast oscillations the
+## step sizes lock to their phase and can pump their energy by orders of
+## magnitude.  For long runs, and for such systems, use a fixed step.
 ##
-## Arguments, outputs and options are those of @code{odeSE} (see
-## @code{help odeSE}): @code{TimeStepSize}/@code{TimeStepNumber} for fixed
-## steps, @code{RelTol}/@code{AbsTol} for adaptive ones, the four sources
-## of Newton's matrix (@code{Jacobian}, @code{HamiltonianHessFcn}, a second
-## output of @var{fcn}, finite differences), @code{Separable},
-## @code{Events}, @code{OutputFcn}, @code{OutputSel}, @code{Refine},
-## @code{Stats}, @code{NewtonTol}, @code{MaxNewtonIterations}.
+## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
+## @code{odeSE}: @var{sol} has the fields of @code{ode45}, and with no
+## output the solution is plotted with @code{odeplot}.
 ##
-## In adaptive mode the local error estimate is the difference to the
-## trapezoidal rule built from @var{fcn} at both ends of the step plus the
-## trapezoidal rule's own local error,
-## y(k+1) - y(k) - h/2 (f(k) + f(k+1)) + (h^3/12) d^3y/dt^3, with the
-## third derivative from the values of @var{fcn} at the last three step
-## points (at a fresh start: at the step's ends and its midpoint, one more
-## evaluation).  It matches the local error in every component to leading
-## order; the first part alone would be zero in p for separable H, where
-## Verlet's p-update is the trapezoidal rule.  It costs one evaluation of
-## @var{fcn} per step.  Adaptive steps do not keep the energy of fast
-## oscillations, which they can pump by orders of magnitude (see RelTol
-## in @code{help odeSE}): use a fixed step for such systems.  Dense
-## output (for output times, @code{Refine} and events) is the cubic
-## Hermite interpolant through the step points.
+## @table @code
+## @item TimeStepSize, TimeStepNumber
+## Fixed step h, or a number of fixed steps.  The last step ends on tf.
+## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
+## Adaptive steps, as in @code{ode45} (defaults 1e-3, 1e-6, off,
+## automatic, |tf-t0|/10).  The error estimate is the distance to the
+## trapezoidal rule through the step's ends plus that rule's own leading
+## error term, so that it holds in q and in p.
+## @item Separable
+## @qcode{"on"}: explicit leapfrog (above); a warning when @var{fcn}
+## shows that dH/dp depends on q (or t).  Default @qcode{"off"}.
+## @item Jacobian, HamiltonianHessFcn
+## Sources of Newton's matrix (above); @code{sol.stats.jacobian_source}
+## says which one served.
+## @item NewtonTol, MaxNewtonIterations
+## Newton's relative tolerance (1e-14; fixed steps converge to
+## NewtonTol/1000) and iterations per solve (10).
+## @item Vectorized
+## @qcode{"on"}: @var{fcn} takes a 2d-by-k matrix of states and a 1-by-k
+## row of times; finite-difference matrices then take one call.
+## @item Events, OutputFcn, OutputSel, Refine, Stats
+## As in @code{ode45}, on the dense output (cubic Hermite between the
+## step points).  @code{Refine} (default 1: step points only) adds
+## interpolated rows; @code{Stats} prints the counts of
+## @code{sol.stats}.
+## @item MaxSteps
+## Largest number of steps of a run (default: no limit).
+## @end table
 ##
-## Example: Kepler's problem over 100 orbits with a fixed step; the energy
-## error stays bounded and the angular momentum is conserved.
+## A run that cannot go on warns, with an identifier
+## @code{symplectic:@dots{}}, and returns every row computed so far.
+##
+## Example: Kepler's orbit of eccentricity 0.6 over 100 periods, 1000
+## steps per period.  The angular momentum stays at its start to
+## round-off, and the energy error does not grow.
 ##
 ## @example
 ## @group
@@ -77,10 +97,15 @@
 ## e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
 ## opts = symplecticset ("TimeStepSize", 2*pi/1000, "Separable", "on");
 ## [t, y] = odeSV (kepler, [0 200*pi], y0, opts);
-## L = y(:,1).*y(:,4) - y(:,2).*y(:,3);     # constant to round-off
+## L = y(:,1).*y(:,4) - y(:,2).*y(:,3);
+## H = sum (y(:,3:4).^2, 2)/2 - 1 ./ sqrt (sum (y(:,1:2).^2, 2));
+## printf ("|L - L(0)| <= %.1e, |H - H(0)| <= %.1e\n",
+##         max (abs (L - L(1))), max (abs (H - H(1))));
+## plot (t / (2*pi), H - H(1));
+## xlabel ("periods");  ylabel ("H(t) - H(0)");
 ## @end group
 ## @end example
-## @seealso{odeSE, odeSPVI, symplecticset, ode45, odeset}
+## @seealso{odeSE, odeSPVI, symplecticset, ode45, odeset, odeplot}
 ## @end deftypefn
 
 function varargout = odeSV (varargin)
