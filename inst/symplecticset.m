@@ -10,8 +10,8 @@
 ## @deftypefnx {} {@var{opts} =} symplecticset (@var{name}, @var{value}, @dots{})
 ## @deftypefnx {} {@var{opts} =} symplecticset (@var{oldopts}, @var{name}, @var{value}, @dots{})
 ## @deftypefnx {} {@var{opts} =} symplecticset (@var{oldopts}, @var{newopts})
-## Create or modify an options structure for @code{odeSE}, @code{odeSV} and
-## @code{odeSPVI}.
+## Create or modify an options structure for the symplectic solvers
+## @code{odeSE}, @code{odeSV} and @code{odeSPVI}.
 ##
 ## @code{symplecticset} works as @code{odeset} and accepts all of its
 ## fields, plus the fields of this package, without the warning that
@@ -83,7 +83,7 @@
 ## add options to such a struct with @code{symplecticset (opts, @dots{})}.
 ##
 ## Setting a field by assignment, @code{opts.Q_DoFs = 4}, works as well;
-## scripts written for the 2013 odepkg solvers, which passed these names to
+## scripts written for the odepkg solvers, which passed these names to
 ## @code{odeset}, keep working (with @code{odeset}'s warning).
 ##
 ## @example
