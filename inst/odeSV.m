@@ -18,8 +18,8 @@
 ## The state is y = [q; p], q and p in R^d.  @var{fcn} returns Hamilton's
 ## equations, @code{dy = fcn (t, y)} = [dH/dp; -dH/dq + F], a column of
 ## length 2d; F(t, q, p) is an optional forcing term (the example below
-## writes Kepler's problem).  With fq = dH/dp and fp = -dH/dq + F, one
-## step of size h is
+## gives @var{fcn} for Kepler's problem).  With fq = dH/dp and
+## fp = -dH/dq + F, one step of size h is
 ##
 ## @example
 ## @group
