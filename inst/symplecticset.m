@@ -39,7 +39,7 @@
 ## Default 3.  @code{P_DoFs} is accepted as an alias.
 ## @item PolynomialDegree
 ## @code{odeSPVI}: sets Q_DoFs = degree+1, and Nodes = degree+1 unless
-## Nodes is given (degree 1 to 40; degree 40 alone gives 41 nodes).
+## Nodes is given (degree 1 to 39).
 ## Given together with Q_DoFs (or P_DoFs with Nodes) it
 ## must agree with it: @code{odeSPVI} refuses a disagreement.
 ## @item HamiltonianHessFcn
@@ -109,7 +109,7 @@ function opts = symplecticset (varargin)
     printf ("     TimeStepNumber:  integer, >0, []\n");
     printf ("             Q_DoFs:  integer, 2..min(2*Nodes,41), [Nodes+1]\n");
     printf ("              Nodes:  integer, 1..40, [3] (alias P_DoFs)\n");
-    printf ("   PolynomialDegree:  integer, 1..40, []\n");
+    printf ("   PolynomialDegree:  integer, 1..39, []\n");
     printf (" HamiltonianHessFcn:  function handle, []\n");
     printf ("          Separable:  {[\"off\"], \"on\"}\n");
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");

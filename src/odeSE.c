@@ -1,14 +1,12 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* odeSE.c -- MEX entry point of odeSE; all the work is in mex/ and core/. */
+/* odeSE.c -- MEX entry point of odeSE: its descriptor (mex/methods/se.c)
+   into the common entry (mex/entry.c). */
 #include "mex/symmex.h"
 
 void
 mexFunction (int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[])
 {
-  static const symmex_solver solver = { "odeSE", NULL, 0 };
-  symmex_solver s = solver;
-  s.type = sym_step_se;
-  symmex_run (&s, nlhs, plhs, nrhs, prhs);
+  symmex_run (&symmex_method_se, nlhs, plhs, nrhs, prhs);
 }

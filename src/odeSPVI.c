@@ -1,14 +1,12 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* odeSPVI.c -- MEX entry point of odeSPVI; all the work is in mex/ and core/. */
+/* odeSPVI.c -- MEX entry point of odeSPVI: its descriptor (mex/methods/spvi.c)
+   into the common entry (mex/entry.c). */
 #include "mex/symmex.h"
 
 void
 mexFunction (int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[])
 {
-  static const symmex_solver solver = { "odeSPVI", NULL, 1 };
-  symmex_solver s = solver;
-  s.type = sym_step_spvi;
-  symmex_run (&s, nlhs, plhs, nrhs, prhs);
+  symmex_run (&symmex_method_spvi, nlhs, plhs, nrhs, prhs);
 }

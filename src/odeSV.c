@@ -1,14 +1,12 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* odeSV.c -- MEX entry point of odeSV; all the work is in mex/ and core/. */
+/* odeSV.c -- MEX entry point of odeSV: its descriptor (mex/methods/sv.c)
+   into the common entry (mex/entry.c). */
 #include "mex/symmex.h"
 
 void
 mexFunction (int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[])
 {
-  static const symmex_solver solver = { "odeSV", NULL, 0 };
-  symmex_solver s = solver;
-  s.type = sym_step_sv;
-  symmex_run (&s, nlhs, plhs, nrhs, prhs);
+  symmex_run (&symmex_method_sv, nlhs, plhs, nrhs, prhs);
 }

@@ -59,7 +59,8 @@ secs=$(($(date +%s) - start))
 
 # Split the log into error records (blank "==PID== " lines separate them)
 # and count those whose stack mentions our code.
-ours='odeSE\.mex|odeSV\.mex|odeSPVI\.mex|mexFunction|symmex_|[^a-z_]sym_[a-z_]+ |(run|options|control|driver|newton|quadrature|system|step_se|step_sv|step_spvi|steprec|odeSE|odeSV|odeSPVI)\.c:'
+srcs=$(cd "$here/../src" && find . -name '*.c' -exec basename {} .c \; | sort -u | paste -sd'|')
+ours="ode[A-Z]+__?\\.mex|ode[A-Z]+\\.mex|mexFunction|symmex_|[^a-z_](sym|spvi)_[a-z_]+ |($srcs)\\.c:"
 kinds='Invalid (read|write|free)|Conditional jump|Use of uninitialised|Syscall param|Mismatched free|Source and destination overlap|Argument .* of function|Uninitialised value'
 report=$(awk -v ours="$ours" -v kinds="$kinds" '
   function flush() {

@@ -345,7 +345,7 @@
 %!test check_bad (all3, "Octave:invalid-input-arg", "Refine must be an integer, got 2.5", f, [0 1], y0, struct ("Refine", 2.5));
 %!test check_bad (all3, "Octave:invalid-input-arg", "NormControl must be \"on\" or \"off\", got \"maybe\"", f, [0 1], y0, struct ("NormControl", "maybe"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Stats must be \"on\" or \"off\", got 1x1 complex double", f, [0 1], y0, struct ("Stats", 5i));
-%!test check_bad (all3, "Octave:invalid-input-arg", "Separable must be \"on\" or \"off\", got \"x\"", f, [0 1], y0, struct ("Separable", "x"));
+%!test check_bad ({@odeSE, @odeSV}, "Octave:invalid-input-arg", "Separable must be \"on\" or \"off\", got \"x\"", f, [0 1], y0, struct ("Separable", "x"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "NormControl must be \"on\" or \"off\", got 1x1 double", f, [0 1], y0, struct ("NormControl", NaN));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Stats must be \"on\" or \"off\", got 2x1 char", f, [0 1], y0, struct ("Stats", ["o"; "n"]));
 %!test check_bad ({@odeSPVI}, "Octave:invalid-input-arg", "NewtonMatrix must be \"auto\", \"kept\" or \"new\", got \"old\"", f, [0 1], y0, struct ("NewtonMatrix", "old"));
@@ -405,8 +405,8 @@
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 7 with Nodes = 3 is a degenerate pair: .*Q_DoFs <= 2\\*Nodes", f, [0 1], y0, struct ("Q_DoFs", 7, "Nodes", 3));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 3 with Nodes = 1 is a degenerate pair", f, [0 1], y0, struct ("Q_DoFs", 3, "Nodes", 1));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 5 with Nodes = 2 is a degenerate pair", f, [0 1], y0, struct ("Q_DoFs", 5, "P_DoFs", 2));
-%!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be between 1 and 40, got 0", f, [0 1], y0, struct ("PolynomialDegree", 0));
-%!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be between 1 and 40, got 41", f, [0 1], y0, struct ("PolynomialDegree", 41));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be between 1 and 39, got 0", f, [0 1], y0, struct ("PolynomialDegree", 0));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be between 1 and 39, got 41", f, [0 1], y0, struct ("PolynomialDegree", 41));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "PolynomialDegree must be an integer, got 2.5", f, [0 1], y0, struct ("PolynomialDegree", 2.5));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Q_DoFs = 5 with Nodes = 2 is a degenerate pair", f, [0 1], y0, struct ("PolynomialDegree", 4, "Nodes", 2));
 %!test check_bad (spvi, "Octave:invalid-input-arg", "Nodes = 5 and its alias P_DoFs = 2 disagree; give one of them", f, [0 1], y0, symplecticset ("Nodes", 5, "P_DoFs", 2));

@@ -1,24 +1,24 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* options.c -- odeset options and the package's own fields, matched by
-   name without regard to case, checked, with the defaults that the help
-   of symplecticset lists. */
+/* options.c -- the options common to the solvers: odeset's fields and the
+   package's common ones, matched by name without regard to case, checked,
+   with their defaults; and the checks of the steps they ask for against
+   TSPAN.  A method's own options are read by its descriptor (methods/)
+   with the helpers here. */
 #include "symmex.h"
 
 #include <ctype.h>
+#include <float.h>
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
-/* The most steps TimeStepNumber and MaxSteps may ask for: 1e12, or what
-   a long holds where it has 32 bits */
-#define MAX_COUNT (LONG_MAX / 2 < 1000000000000LL ? LONG_MAX / 2 \
-                   : (long) 1000000000000LL)
-
-static const char *BADARG = "Octave:invalid-input-arg";
+/* The most steps TimeStepNumber and MaxSteps may ask for: SYM_MAX_STEPS,
+   or what a long holds where it has 32 bits */
+#define MAX_COUNT (LONG_MAX / 2 < SYM_MAX_STEPS ? LONG_MAX / 2 \
+                   : (long) SYM_MAX_STEPS)
 
 static int
 name_eq (const char *a, const char *b)
@@ -31,8 +31,8 @@ name_eq (const char *a, const char *b)
 
 /* The non-empty field whose name matches (any case); two of them (a
    struct with Nodes and nodes both set) are an error: which to take? */
-static const mxArray *
-field (const char *solver, const mxArray *s, const char *name)
+const mxArray *
+symmex_field (const char *solver, const mxArray *s, const char *name)
 {
   if (! s)
     return NULL;
@@ -45,7 +45,7 @@ field (const char *solver, const mxArray *s, const char *name)
         if (! vi || mxIsEmpty (vi))
           continue;
         if (found >= 0)
-          mexErrMsgIdAndTxt (BADARG, "%s: OPTS sets both %s and %s (names "
+          mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: OPTS sets both %s and %s (names "
                              "are matched in any case); give one of them",
                              solver, mxGetFieldNameByNumber (s, found),
                              mxGetFieldNameByNumber (s, i));
@@ -62,82 +62,6 @@ is_real_numeric (const mxArray *v)
           || mxIsInt32 (v) || mxIsInt64 (v) || mxIsUint8 (v)
           || mxIsUint16 (v) || mxIsUint32 (v) || mxIsUint64 (v))
          && ! mxIsComplex (v);
-}
-
-const char *
-symmex_describe (const mxArray *v, char *buf, size_t len)
-{
-  /* the dimensions as size () gives them, then the class */
-  const mwSize *dims = mxGetDimensions (v);
-  mwSize nd = mxGetNumberOfDimensions (v);
-  size_t k = 0;
-  buf[0] = '\0';
-  for (mwSize i = 0; i < nd && k < len; i++)
-    {
-      int w = snprintf (buf + k, len - k, "%s%lu", i ? "x" : "",
-                        (unsigned long) dims[i]);
-      if (w < 0)
-        break;
-      k += (size_t) w;
-    }
-  if (k < len)
-    snprintf (buf + k, len - k, " %s%s%s", mxIsSparse (v) ? "sparse " : "",
-              mxIsComplex (v) ? "complex " : "", mxGetClassName (v));
-  return buf;
-}
-
-int
-symmex_is_size (const mxArray *a, size_t r, size_t k)
-{
-  return mxGetNumberOfDimensions (a) == 2 && mxGetM (a) == r
-         && mxGetN (a) == k;
-}
-
-int
-symmex_is_vector (const mxArray *a)
-{
-  return mxGetNumberOfDimensions (a) == 2
-         && (mxGetM (a) == 1 || mxGetN (a) == 1);
-}
-
-const char *
-symmex_num (char *buf, size_t len, const char *fmt, double x)
-{
-  if (isnan (x))
-    snprintf (buf, len, "NaN");
-  else if (isinf (x))
-    snprintf (buf, len, x > 0 ? "Inf" : "-Inf");
-  else
-    snprintf (buf, len, fmt, x);
-  return buf;
-}
-
-/* A one-row text of 1 to 39 characters in quotes, then after; anything
-   else as symmex_describe gives it */
-static const char *
-describe_text (const mxArray *v, char *buf, size_t len, const char *after)
-{
-  char text[40];
-  if (mxIsChar (v) && mxGetNumberOfDimensions (v) == 2 && mxGetM (v) == 1
-      && mxGetN (v) > 0 && mxGetN (v) < sizeof text
-      && ! mxGetString (v, text, sizeof text))
-    {
-      snprintf (buf, len, "\"%s\"%s", text, after);
-      return buf;
-    }
-  return symmex_describe (v, buf, len);
-}
-
-const char *
-symmex_describe_word (const mxArray *v, char *buf, size_t len)
-{
-  return describe_text (v, buf, len, "");
-}
-
-const char *
-symmex_describe_fn (const mxArray *v, char *buf, size_t len)
-{
-  return describe_text (v, buf, len, ", which names no function");
 }
 
 /* Element i of a real numeric array as double. */
@@ -159,38 +83,38 @@ pos_scalar (const char *solver, const mxArray *v, const char *name,
 {
   char buf[64];
   if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive real scalar, "
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must be a positive real scalar, "
                        "got %s", solver, name,
                        symmex_describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! (x > 0) || (! allow_inf && ! isfinite (x)))
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a positive %sscalar, got %s",
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must be a positive %sscalar, got %s",
                        solver, name, allow_inf ? "" : "finite ",
                        SYMMEX_NUM (x, "%g"));
   return x;
 }
 
-static long
-pos_integer (const char *solver, const mxArray *v, const char *name,
+long
+symmex_integer (const char *solver, const mxArray *v, const char *name,
              long lo, long hi)
 {
   char buf[64];
   if (! is_real_numeric (v) || mxGetNumberOfElements (v) != 1)
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer scalar, got %s",
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must be an integer scalar, got %s",
                        solver, name, symmex_describe (v, buf, sizeof buf));
   double x = elem (v, 0);
   if (! isfinite (x) || x != floor (x))
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be an integer, got %s",
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must be an integer, got %s",
                        solver, name, SYMMEX_NUM (x, "%g"));
   if (x < lo || x > hi)
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be between %ld and %ld, got %g",
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must be between %ld and %ld, got %g",
                        solver, name, lo, hi, x);
   return (long) x;
 }
 
 /* "on"/"off" strings, or a logical/numeric finite scalar (nonzero: on). */
-static int
-on_off (const char *solver, const mxArray *v, const char *name)
+int
+symmex_on_off (const char *solver, const mxArray *v, const char *name)
 {
   if (mxIsChar (v) && mxGetM (v) == 1)
     {
@@ -208,194 +132,176 @@ on_off (const char *solver, const mxArray *v, const char *name)
            && (mxIsLogical (v) || isfinite (elem (v, 0))))
     return mxIsLogical (v) ? mxGetLogicals (v)[0] != 0 : elem (v, 0) != 0;
   char buf[64];
-  mexErrMsgIdAndTxt (BADARG, "%s: %s must be \"on\" or \"off\", got %s",
+  mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must be \"on\" or \"off\", got %s",
                      solver, name, symmex_describe_word (v, buf, sizeof buf));
-  return 0;
-}
-
-mxArray *
-symmex_full (const mxArray *a)
-{
-  if (! a || ! mxIsSparse (a))
-    return (mxArray *) a;
-  mxArray *in[1] = { (mxArray *) a }, *out[1] = { NULL };
-  mexCallMATLAB (1, out, 1, in, "full");
-  return out[0];
-}
-
-int
-symmex_is_function (const mxArray *a)
-{
-  if (mxIsFunctionHandle (a))
-    return 1;
-  if (mxIsChar (a) && mxGetM (a) == 1 && mxGetN (a) > 0)
-    {
-      mxArray *in[1] = { (mxArray *) a }, *out[1] = { NULL };
-      mexCallMATLAB (1, out, 1, in, "exist");
-      double e = mxGetScalar (out[0]);
-      mxDestroyArray (out[0]);
-      if (e == 3 || e == 5 || e == 103)
-        return 1;
-      if (e != 2)
-        return 0;
-      /* 2 is any file on the path, a script too: nargin knows functions */
-      out[0] = NULL;
-      mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "nargin");
-      if (ex)
-        {
-          mxDestroyArray (ex);
-          return 0;
-        }
-      mxDestroyArray (out[0]);
-      return 1;
-    }
   return 0;
 }
 
 static const mxArray *
 function_opt (const char *solver, const mxArray *opts, const char *name)
 {
-  const mxArray *v = field (solver, opts, name);
+  const mxArray *v = symmex_field (solver, opts, name);
   char buf[64];
   if (v && ! symmex_is_function (v))
-    mexErrMsgIdAndTxt (BADARG, "%s: %s must be a function handle or the "
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must be a function handle or the "
                        "name of a function, got %s", solver, name,
                        symmex_describe_fn (v, buf, sizeof buf));
   return v;
 }
 
-void
-symmex_parse_options (const char *solver, const mxArray *opts, int n,
-                      int is_spvi, symmex_opts *o)
+/* RelTol, AbsTol (a scalar or one per component) and NormControl, with
+   ode45's defaults */
+static void
+parse_tolerances (const char *solver, const mxArray *opts, int n,
+                  symmex_opts *o)
+{
+  const mxArray *v;
+  char buf[64];
+  o->rtol = (v = symmex_field (solver, opts, "RelTol"))
+            ? pos_scalar (solver, v, "RelTol", 0) : 1e-3;
+  o->atol = mxMalloc (sizeof (double) * n);
+  o->atol_len = 1;
+  o->atol[0] = 1e-6;
+  if ((v = symmex_field (solver, opts, "AbsTol")))
+    {
+      size_t k = mxGetNumberOfElements (v);
+      if (! is_real_numeric (v) || (k != 1 && k != (size_t) n)
+          || ! symmex_is_vector (v))
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: AbsTol must be a positive "
+                           "scalar or a vector of %d elements (numel (Y0)), "
+                           "got %s", solver, n,
+                           symmex_describe (v, buf, sizeof buf));
+      for (size_t i = 0; i < k; i++)
+        {
+          o->atol[i] = elem (v, i);
+          if (! (o->atol[i] > 0) || ! isfinite (o->atol[i]))
+            mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: AbsTol must be positive "
+                               "and finite, got %s", solver,
+                               SYMMEX_NUM (o->atol[i], "%g"));
+        }
+      o->atol_len = (int) k;
+    }
+  o->norm_control = (v = symmex_field (solver, opts, "NormControl"))
+                    ? symmex_on_off (solver, v, "NormControl") : 0;
+  if (o->norm_control && o->atol_len > 1)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: AbsTol must be a scalar when "
+                       "NormControl is \"on\"", solver);
+}
+
+/* OutputSel: indices into y (1-based), or a logical mask */
+static void
+parse_outputsel (const char *solver, const mxArray *v, int n,
+                 symmex_opts *o)
+{
+  char buf[64];
+  size_t k = mxGetNumberOfElements (v);
+  if ((! is_real_numeric (v) && ! mxIsLogical (v)) || ! symmex_is_vector (v))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: OutputSel must be a vector of "
+                       "indices into Y0, got %s", solver,
+                       symmex_describe (v, buf, sizeof buf));
+  o->outputsel = mxMalloc (sizeof (int) * (k + 1));
+  if (mxIsLogical (v))
+    {
+      if (k != (size_t) n)
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: a logical OutputSel must have "
+                           "%d elements (one per element of Y0), got %d",
+                           solver, n, (int) k);
+      for (size_t i = 0; i < k; i++)
+        if (mxGetLogicals (v)[i])
+          o->outputsel[o->noutputsel++] = (int) i;
+      return;
+    }
+  for (size_t i = 0; i < k; i++)
+    {
+      double x = elem (v, i);
+      if (x != floor (x) || x < 1 || x > n)
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: OutputSel must hold integer "
+                           "indices between 1 and %d, got %s", solver, n,
+                           SYMMEX_NUM (x, "%g"));
+      o->outputsel[o->noutputsel++] = (int) x - 1;
+    }
+}
+
+/* Jacobian: a function, or a constant real n-by-n matrix (df/dy) */
+static const mxArray *
+parse_jacobian (const char *solver, const mxArray *v, int n)
+{
+  char buf[64];
+  if (symmex_is_function (v))
+    return v;
+  if (! is_real_numeric (v) || ! symmex_is_size (v, n, n))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Jacobian must be a function "
+                       "handle or a real %dx%d matrix (df/dy), got %s",
+                       solver, n, n, symmex_describe (v, buf, sizeof buf));
+  /* single or integer: a double copy (freed with the call) */
+  if (! mxIsDouble (v))
+    v = symmex_to_double (v);
+  const double *jv = mxGetPr (v);
+  for (size_t i = 0; i < (size_t) n * n; i++)
+    if (! isfinite (jv[i]))
+      mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the Jacobian matrix must be "
+                         "finite, element %d is %s", solver, (int) i + 1,
+                         SYMMEX_NUM (jv[i], "%g"));
+  return v;
+}
+
+/* Fixed steps, Newton's controls, MaxSteps */
+static void
+parse_steps (const char *solver, const mxArray *opts, symmex_opts *o)
+{
+  const mxArray *v;
+  o->h_fixed = (v = symmex_field (solver, opts, "TimeStepSize"))
+               ? pos_scalar (solver, v, "TimeStepSize", 0) : 0;
+  o->nsteps_fixed = (v = symmex_field (solver, opts, "TimeStepNumber"))
+                    ? symmex_integer (solver, v, "TimeStepNumber", 1,
+                                      MAX_COUNT) : 0;
+  o->newton_tol = (v = symmex_field (solver, opts, "NewtonTol"))
+                  ? pos_scalar (solver, v, "NewtonTol", 0) : 0;
+  if (! (o->newton_tol < 1))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: NewtonTol must be below 1 (it is "
+                       "relative to the size of q or p), got %s", solver,
+                       SYMMEX_NUM (o->newton_tol, "%g"));
+  o->max_newton = (v = symmex_field (solver, opts, "MaxNewtonIterations"))
+                  ? (int) symmex_integer (solver, v, "MaxNewtonIterations",
+                                          1, 1000) : 0;
+  o->max_steps = (v = symmex_field (solver, opts, "MaxSteps"))
+                 ? symmex_integer (solver, v, "MaxSteps", 1, MAX_COUNT) : 0;
+}
+
+static void
+parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
 {
   const mxArray *v;
   char buf[64];
   memset (o, 0, sizeof (*o));
   if (opts && ! mxIsEmpty (opts)
       && ! (mxIsStruct (opts) && mxGetNumberOfElements (opts) == 1))
-    mexErrMsgIdAndTxt (BADARG, "%s: OPTS must be a struct from odeset or "
-                       "symplecticset (or a plain 1x1 struct), got %s",
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: OPTS must be a struct from odeset "
+                       "or symplecticset (or a plain 1x1 struct), got %s",
                        solver, symmex_describe (opts, buf, sizeof buf));
   if (opts && mxIsEmpty (opts))
     opts = NULL;
-
-  o->rtol = (v = field (solver, opts, "RelTol"))
-            ? pos_scalar (solver, v, "RelTol", 0) : 1e-3;
-  o->atol = mxMalloc (sizeof (double) * n);
-  o->atol_len = 1;
-  o->atol[0] = 1e-6;
-  if ((v = field (solver, opts, "AbsTol")))
-    {
-      size_t k = mxGetNumberOfElements (v);
-      if (! is_real_numeric (v) || (k != 1 && k != (size_t) n)
-          || ! symmex_is_vector (v))
-        mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a positive scalar or "
-                           "a vector of %d elements (numel (Y0)), got %s",
-                           solver, n, symmex_describe (v, buf, sizeof buf));
-      for (size_t i = 0; i < k; i++)
-        {
-          o->atol[i] = elem (v, i);
-          if (! (o->atol[i] > 0) || ! isfinite (o->atol[i]))
-            mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be positive and "
-                               "finite, got %s", solver,
-                               SYMMEX_NUM (o->atol[i], "%g"));
-        }
-      o->atol_len = (int) k;
-    }
-  o->norm_control = (v = field (solver, opts, "NormControl"))
-                    ? on_off (solver, v, "NormControl") : 0;
-  if (o->norm_control && o->atol_len > 1)
-    mexErrMsgIdAndTxt (BADARG, "%s: AbsTol must be a scalar when "
-                       "NormControl is \"on\"", solver);
+  parse_tolerances (solver, opts, n, o);
   /* Inf: the first step as long as MaxStep and TSPAN allow (the driver
      caps it), as ode45 takes it */
-  o->h0 = (v = field (solver, opts, "InitialStep"))
+  o->h0 = (v = symmex_field (solver, opts, "InitialStep"))
           ? pos_scalar (solver, v, "InitialStep", 1) : 0;
-  o->hmax = (v = field (solver, opts, "MaxStep"))
+  o->hmax = (v = symmex_field (solver, opts, "MaxStep"))
             ? pos_scalar (solver, v, "MaxStep", 1) : 0;
   o->events = function_opt (solver, opts, "Events");
   o->outputfcn = function_opt (solver, opts, "OutputFcn");
-  if ((v = field (solver, opts, "OutputSel")))
-    {
-      size_t k = mxGetNumberOfElements (v);
-      if ((! is_real_numeric (v) && ! mxIsLogical (v))
-          || ! symmex_is_vector (v))
-        mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must be a vector of "
-                           "indices into Y0, got %s", solver,
-                           symmex_describe (v, buf, sizeof buf));
-      o->outputsel = mxMalloc (sizeof (int) * (k + 1));
-      if (mxIsLogical (v))
-        {
-          if (k != (size_t) n)
-            mexErrMsgIdAndTxt (BADARG, "%s: a logical OutputSel must have "
-                               "%d elements (one per element of Y0), got "
-                               "%d", solver, n, (int) k);
-          for (size_t i = 0; i < k; i++)
-            if (mxGetLogicals (v)[i])
-              o->outputsel[o->noutputsel++] = (int) i;
-        }
-      else
-        for (size_t i = 0; i < k; i++)
-          {
-            double x = elem (v, i);
-            if (x != floor (x) || x < 1 || x > n)
-              mexErrMsgIdAndTxt (BADARG, "%s: OutputSel must hold integer "
-                                 "indices between 1 and %d, got %s", solver, n,
-                                 SYMMEX_NUM (x, "%g"));
-            o->outputsel[o->noutputsel++] = (int) x - 1;
-          }
-    }
-  o->refine = (v = field (solver, opts, "Refine"))
-              ? (int) pos_integer (solver, v, "Refine", 1, 1000000) : 1;
-  o->stats = (v = field (solver, opts, "Stats"))
-             ? on_off (solver, v, "Stats") : 0;
-  o->vectorized = (v = field (solver, opts, "Vectorized"))
-                  ? on_off (solver, v, "Vectorized") : 0;
-  if ((v = field (solver, opts, "Jacobian")))
-    {
-      if (symmex_is_function (v))
-        o->jacobian = v;
-      else if (is_real_numeric (v) && symmex_is_size (v, n, n))
-        {
-          if (! mxIsDouble (v))
-            {
-              /* single or integer: a double copy (freed with the call) */
-              mxArray *in[1] = { (mxArray *) v }, *out[1] = { NULL };
-              mexCallMATLAB (1, out, 1, in, "double");
-              v = out[0];
-            }
-          const double *jv = mxGetPr (v);
-          for (size_t i = 0; i < (size_t) n * n; i++)
-            if (! isfinite (jv[i]))
-              mexErrMsgIdAndTxt (BADARG, "%s: the Jacobian matrix must be "
-                                 "finite, element %d is %s", solver,
-                                 (int) i + 1, SYMMEX_NUM (jv[i], "%g"));
-          o->jacobian = v;
-        }
-      else
-        mexErrMsgIdAndTxt (BADARG, "%s: Jacobian must be a function handle "
-                           "or a real %dx%d matrix (df/dy), got %s",
-                           solver, n, n, symmex_describe (v, buf, sizeof buf));
-    }
+  if ((v = symmex_field (solver, opts, "OutputSel")))
+    parse_outputsel (solver, v, n, o);
+  o->refine = (v = symmex_field (solver, opts, "Refine"))
+              ? (int) symmex_integer (solver, v, "Refine", 1, 1000000) : 1;
+  o->stats = (v = symmex_field (solver, opts, "Stats"))
+             ? symmex_on_off (solver, v, "Stats") : 0;
+  o->vectorized = (v = symmex_field (solver, opts, "Vectorized"))
+                  ? symmex_on_off (solver, v, "Vectorized") : 0;
+  if ((v = symmex_field (solver, opts, "Jacobian")))
+    o->jacobian = parse_jacobian (solver, v, n);
   o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");
-  o->h_fixed = (v = field (solver, opts, "TimeStepSize"))
-               ? pos_scalar (solver, v, "TimeStepSize", 0) : 0;
-  o->nsteps_fixed = (v = field (solver, opts, "TimeStepNumber"))
-                    ? pos_integer (solver, v, "TimeStepNumber", 1,
-                                   MAX_COUNT) : 0;
-  o->separable = (v = field (solver, opts, "Separable"))
-                 ? on_off (solver, v, "Separable") : 0;
-  o->newton_tol = (v = field (solver, opts, "NewtonTol"))
-                  ? pos_scalar (solver, v, "NewtonTol", 0) : 0;
-  if (! (o->newton_tol < 1))
-    mexErrMsgIdAndTxt (BADARG, "%s: NewtonTol must be below 1 (it is "
-                       "relative to the size of q or p), got %s", solver,
-                       SYMMEX_NUM (o->newton_tol, "%g"));
-  o->max_newton = (v = field (solver, opts, "MaxNewtonIterations"))
-                  ? (int) pos_integer (solver, v, "MaxNewtonIterations", 1,
-                                       1000) : 0;
-  o->max_steps = (v = field (solver, opts, "MaxSteps"))
-                 ? pos_integer (solver, v, "MaxSteps", 1, MAX_COUNT) : 0;
+  parse_steps (solver, opts, o);
 
   /* odeset fields that would change the problem solved: not taken (a
      projection onto y >= 0 would break the symplectic map; Hamilton's
@@ -404,104 +310,102 @@ symmex_parse_options (const char *solver, const mxArray *opts, int n,
      ...) are ignored. */
   static const char *unsupported[] = { "NonNegative", "Mass" };
   for (size_t i = 0; i < sizeof unsupported / sizeof *unsupported; i++)
-    if (field (solver, opts, unsupported[i]))
+    if (symmex_field (solver, opts, unsupported[i]))
       mexWarnMsgIdAndTxt ("symplectic:unsupported-option", "%s: option %s "
                           "is not supported and is ignored", solver,
                           unsupported[i]);
+}
 
-  /* odeSPVI: Q_DoFs (modes of q) and Nodes (alias P_DoFs); odepkg's
-     PolynomialDegree sets Q_DoFs = degree + 1 (and Nodes unless given). */
-  o->nodes = 3;
-  o->q_dofs = 0;
-  if (is_spvi)
+int
+symmex_word (const char *solver, const mxArray *v, const char *name,
+             const char *const *words)
+{
+  char buf[16] = "", what[64], list[128] = "";
+  int k;
+  if (mxIsChar (v) && mxGetString (v, buf, sizeof buf) == 0)
+    for (k = 0; words[k]; k++)
+      if (name_eq (buf, words[k]))
+        return k;
+  for (k = 0; words[k]; k++)
+    snprintf (list + strlen (list), sizeof list - strlen (list),
+              "%s\"%s\"", k == 0 ? "" : words[k + 1] ? ", " : " or ",
+              words[k]);
+  mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must be %s, got %s", solver,
+                     name, list, symmex_describe_word (v, what, sizeof what));
+  return -1;
+}
+
+int
+symmex_fixed (const symmex_opts *o)
+{
+  return o->h_fixed > 0 || o->nsteps_fixed > 0;
+}
+
+/* SYM_MAX_STEPS as people write it: 1e12 */
+static const char *
+max_steps_text (void)
+{
+  static char buf[24];
+  snprintf (buf, sizeof buf, "%g", SYM_MAX_STEPS);
+  char *e = strstr (buf, "e+");
+  if (e)
+    memmove (e + 1, e + 2, strlen (e + 2) + 1);
+  return buf;
+}
+
+/* Fixed steps: a number of steps that fits a long, and steps that move t
+   (the core computes t0 + k*h).  Adaptive steps: a MaxStep that would take
+   more steps than allowed is refused as such a TimeStepSize is (near
+   t = 0 the least step, 16 ulps of t, does not bound it), and RelTol is at
+   least 100 eps, as in other ode45 codes (below it the error test asks for
+   steps that round-off cannot give). */
+static void
+check_steps (const char *name, const symmex_args *a, symmex_opts *o)
+{
+  const double t0 = a->tspan[0], t1 = a->tspan[a->ntspan - 1];
+  const double span = fabs (t1 - t0);
+  if (symmex_fixed (o))
     {
-      const mxArray *vn = field (solver, opts, "Nodes");
-      const mxArray *vp = field (solver, opts, "P_DoFs");
-      const mxArray *vq = field (solver, opts, "Q_DoFs");
-      const mxArray *vd = field (solver, opts, "PolynomialDegree");
-      /* two names of one number that disagree are refused rather than
-         one of them winning */
-      int pn = vn ? (int) pos_integer (solver, vn, "Nodes", 1, 40) : 0;
-      int pp = vp ? (int) pos_integer (solver, vp, "P_DoFs", 1, 40) : 0;
-      int pq = vq ? (int) pos_integer (solver, vq, "Q_DoFs", 2, 41) : 0;
-      int pd = vd ? 1 + (int) pos_integer (solver, vd, "PolynomialDegree",
-                                           1, 40) : 0;
-      if (vn && vp && pn != pp)
-        mexErrMsgIdAndTxt (BADARG, "%s: Nodes = %d and its alias P_DoFs = "
-                           "%d disagree; give one of them", solver, pn, pp);
-      if (vq && vd && pq != pd)
-        mexErrMsgIdAndTxt (BADARG, "%s: Q_DoFs = %d and PolynomialDegree = "
-                           "%d (Q_DoFs = degree + 1) disagree; give one of "
-                           "them", solver, pq, pd - 1);
-      if (vn || vp)
-        o->nodes = vn ? pn : pp;
-      else if (vd)
-        o->nodes = pd;
-      o->q_dofs = vq ? pq : vd ? pd : o->nodes + 1;
-      if (o->q_dofs > 2 * o->nodes)
-        mexErrMsgIdAndTxt (BADARG, "%s: Q_DoFs = %d with Nodes = %d is a "
-                           "degenerate pair: the scheme does not converge "
-                           "unless Q_DoFs <= 2*Nodes", solver, o->q_dofs,
-                           o->nodes);
-      /* Newton's matrix: kept across steps, or new on every step */
-      o->newton_matrix = SYM_MATRIX_AUTO;
-      const mxArray *vm = field (solver, opts, "NewtonMatrix");
-      if (vm)
+      double h = o->h_fixed > 0 ? o->h_fixed : span / o->nsteps_fixed;
+      double tmax = fmax (fabs (t0), fabs (t1));
+      if (o->h_fixed > 0 && o->nsteps_fixed > 0)
         {
-          char buf[8] = "";
-          if (! mxIsChar (vm) || mxGetString (vm, buf, sizeof buf) != 0
-              || ! (name_eq (buf, "auto") || name_eq (buf, "kept")
-                    || name_eq (buf, "new")))
-            {
-              char what[64];
-              mexErrMsgIdAndTxt (BADARG, "%s: NewtonMatrix must be \"auto\", "
-                                 "\"kept\" or \"new\", got %s", solver,
-                                 symmex_describe_word (vm, what, sizeof what));
-            }
-          o->newton_matrix = name_eq (buf, "kept") ? SYM_MATRIX_KEPT
-                             : name_eq (buf, "new") ? SYM_MATRIX_NEW
-                             : SYM_MATRIX_AUTO;
+          double tend = t0 + a->dir * h * (double) o->nsteps_fixed;
+          if (! isfinite (tend))
+            mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: TimeStepNumber*TimeStepSize"
+                               " = %ld*%g overflows; expected a finite end "
+                               "time", name, o->nsteps_fixed, h);
+          tmax = fmax (tmax, fabs (tend));
         }
+      else if (o->h_fixed > 0 && span / h > SYM_MAX_STEPS)
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: TimeStepSize = %g needs %.3g "
+                           "steps to cover TSPAN, more than the %s allowed; "
+                           "expected TimeStepSize >= %g", name, h, span / h,
+                           max_steps_text (), span / SYM_MAX_STEPS);
+      if (h < 8 * DBL_EPSILON * tmax)
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the fixed step %g is below the "
+                           "round-off of t (|t| up to %g); expected a step "
+                           ">= %g", name, h, tmax, 8 * DBL_EPSILON * tmax);
+      return;
+    }
+  if (o->hmax > 0 && span / o->hmax > SYM_MAX_STEPS)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: MaxStep = %g needs %.3g steps to "
+                       "cover TSPAN, more than the %s allowed; expected "
+                       "MaxStep >= %g", name, o->hmax, span / o->hmax,
+                       max_steps_text (), span / SYM_MAX_STEPS);
+  if (o->rtol < 100 * DBL_EPSILON)
+    {
+      mexWarnMsgIdAndTxt ("symplectic:tolerance", "%s: RelTol = %g is below "
+                          "100*eps; %g is used", name, o->rtol,
+                          100 * DBL_EPSILON);
+      o->rtol = 100 * DBL_EPSILON;
     }
 }
 
-/* ------------------------------------------------------------ messages */
-
-/* See symmex.h: Octave prefixes "NAME: " to the messages of
-   mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt; drop ours so it shows once.
-   (A message that does not begin with the MEX function's name is passed on
-   as it is.)  From here on the two names are Octave's own functions. */
-#undef mexErrMsgIdAndTxt
-#undef mexWarnMsgIdAndTxt
-
-static const char *
-without_own_prefix (const char *msg)
-{
-  const char *fn = mexFunctionName ();
-  size_t k = fn ? strlen (fn) : 0;
-  if (k && strncmp (msg, fn, k) == 0 && msg[k] == ':' && msg[k + 1] == ' ')
-    return msg + k + 2;
-  return msg;
-}
-
 void
-symmex_err (const char *id, const char *fmt, ...)
+symmex_parse_options (const char *solver, const symmex_args *a,
+                      symmex_opts *o)
 {
-  char msg[2048];
-  va_list ap;
-  va_start (ap, fmt);
-  vsnprintf (msg, sizeof msg, fmt, ap);
-  va_end (ap);
-  mexErrMsgIdAndTxt (id, "%s", without_own_prefix (msg));
-}
-
-void
-symmex_warn (const char *id, const char *fmt, ...)
-{
-  char msg[2048];
-  va_list ap;
-  va_start (ap, fmt);
-  vsnprintf (msg, sizeof msg, fmt, ap);
-  va_end (ap);
-  mexWarnMsgIdAndTxt (id, "%s", without_own_prefix (msg));
+  parse_common (solver, a->opts, a->n, o);
+  check_steps (solver, a, o);
 }

@@ -2,28 +2,72 @@
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
 /* symmex.h -- the Octave side of the package: the only code that includes
-   mex.h.  It validates arguments and options, turns the user's function
-   handles into C callbacks of the core, and builds the outputs. */
+   mex.h.  One call of a solver (entry.c) reads its arguments (args.c) and
+   options (options.c, and the method's own through its descriptor,
+   methods/), turns the user's functions into callbacks of the core
+   (problem.c, callbacks.c), runs the core, and builds the outputs
+   (outputs.c) and messages (messages.c).  Nothing here knows a method but
+   its descriptor. */
 #ifndef SYMMEX_H
 #define SYMMEX_H
 
 #include "mex.h"
 #include "../core/sym.h"
 
-/* Which solver is running: its name (for messages) and stepper table. */
+/* ------------------------------------------------------------ methods */
+/* A method as the MEX layer sees it: one descriptor each (methods/). */
 typedef struct {
-  const char *name;
-  const sym_stepper_type *type;
-  int is_spvi;
-} symmex_solver;
+  const char *name;                     /* the solver: messages, sol.solver */
+  const sym_stepper_type *const *type;  /* the core's stepper */
+  /* its own options: read from OPTS (NULL when none were given) into own,
+     the core's options struct of the method (own_size bytes), with every
+     default filled in; errors name the solver */
+  size_t own_size;
+  void (*parse) (const char *solver, const mxArray *opts, void *own);
+  /* its own option names (NULL-terminated) */
+  const char *const *option_names;
+  /* whether its steps solve Newton's equations (need Df) */
+  int (*needs_newton) (const void *own);
+  /* fields it adds to sol (may be NULL) */
+  void (*sol_fields) (mxArray *sol, const void *own, const sym_stats *st);
+  /* Why Newton can fail whatever the step (with fixed steps the message
+     then does not advise a smaller one), or NULL */
+  const char *(*newton_hint) (const void *own);
+  /* what the steps found changing when Separable is on but f is not
+     separable (NULL: the method has no Separable) */
+  const char *sep_broken;
+} symmex_method;
 
-/* The whole call of a solver: odeXX (fcn, tspan, y0, opts, p1, ...). */
-void symmex_run (const symmex_solver *solver, int nlhs, mxArray *plhs[],
+extern const symmex_method symmex_method_se;
+extern const symmex_method symmex_method_sv;
+extern const symmex_method symmex_method_spvi;
+
+/* The whole call of a solver: NAME (fcn, tspan, y0, opts, p1, ...). */
+void symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[],
                  int nrhs, const mxArray *prhs[]);
+
+/* ------------------------------------------------------------ arguments */
+typedef struct {
+  const mxArray *fcn;
+  const double *tspan;
+  int ntspan;
+  double dir;                 /* the sign of tf - t0 */
+  const double *y0;
+  int n;                      /* numel (y0) = 2d */
+  const mxArray *opts;        /* OPTS, or NULL */
+  int nextra;                 /* P1, ... */
+  const mxArray *const *extra;
+} symmex_args;
+
+/* FCN, TSPAN, Y0, OPTS and the extra parameters; errors name the solver */
+void symmex_read_args (const char *solver, int nlhs, int nrhs,
+                       const mxArray *prhs[], symmex_args *a);
 
 /* ------------------------------------------------------------ options */
 enum { JAC_NONE = 0, JAC_FD, JAC_MATRIX, JAC_FCN, JAC_HESSFCN, JAC_FCN2 };
 
+/* The options common to the solvers (odeset's fields and the package's
+   common ones) */
 typedef struct {
   double rtol;
   double *atol;
@@ -41,28 +85,125 @@ typedef struct {
   const mxArray *hessfcn;     /* handle or NULL */
   double h_fixed;
   long nsteps_fixed;
-  int q_dofs, nodes;
-  int separable;
   double newton_tol;
   int max_newton;
-  int newton_matrix;          /* odeSPVI: SYM_MATRIX_AUTO, _KEPT, _NEW */
   long max_steps;
 } symmex_opts;
 
-/* Parse opts (an odeset struct, a plain struct, or []) for a problem of
-   n = 2d components; errors name the solver. */
-void symmex_parse_options (const char *solver, const mxArray *opts, int n,
-                           int is_spvi, symmex_opts *o);
+/* Parse OPTS (an odeset struct, a plain struct, or []) for a problem of
+   n = 2d components, then check the steps it asks for against TSPAN */
+void symmex_parse_options (const char *solver, const symmex_args *a,
+                           symmex_opts *o);
+/* fixed steps (TimeStepSize or TimeStepNumber) */
+int symmex_fixed (const symmex_opts *o);
 
-/* Is a a function handle, or the name of a function (not of a script or
-   of another file)? */
-int symmex_is_function (const mxArray *a);
+/* For the descriptors' parsers: the non-empty field of OPTS named name
+   (in any case; NULL if none), and checked values of it */
+const mxArray *symmex_field (const char *solver, const mxArray *opts,
+                             const char *name);
+long symmex_integer (const char *solver, const mxArray *v, const char *name,
+                     long lo, long hi);
+int symmex_on_off (const char *solver, const mxArray *v, const char *name);
+/* v one of words (NULL-terminated, matched in any case): its index */
+int symmex_word (const char *solver, const mxArray *v, const char *name,
+                 const char *const *words);
 
-/* a is an r-by-k matrix (two dimensions: mxGetN multiplies the trailing
-   ones) */
-int symmex_is_size (const mxArray *a, size_t r, size_t k);
-/* a is a vector: two dimensions, one of them 1 */
-int symmex_is_vector (const mxArray *a);
+/* ------------------------------------------------------------ the problem */
+#define SYMMEX_MAXBATCH 64
+
+/* The user's functions as the core's callbacks, and what the run collects
+   for the outputs */
+typedef struct {
+  const char *solver;
+  int d, n;
+  /* feval arguments: {fcn, t, y, extras...}; t and y are reused */
+  mxArray **args;
+  int nargs;
+  mxArray *batch_t[SYMMEX_MAXBATCH + 1], *batch_y[SYMMEX_MAXBATCH + 1];
+  int big_k;                 /* the k of batch_t[0], batch_y[0] */
+  /* Jacobian */
+  int jac_source;
+  mxArray **jargs;           /* {handle, t, y, extras...} for Jacobian/Hess */
+  const double *jac_const;
+  /* events */
+  mxArray **eargs;
+  int nevents;
+  /* output */
+  const symmex_opts *o;
+  mxArray **oargs;           /* {OutputFcn, t, y, flag, extras...} */
+  int nextra;
+  const mxArray *const *extra;
+  double *tbuf, *ybuf;
+  size_t nrows, cap;
+  double *te, *ye;
+  int *ie;
+  size_t nev, evcap;
+  /* the names the user's functions are called by, or "" (feval) */
+  char fname[64], jname[64], ename[64], oname[64];
+  const char *nonfinite_what;  /* which function last returned NaN/Inf */
+  double nonfinite_t;          /* and at which t */
+} symmex_ctx;
+
+/* The context of a run: FCN probed at (t0, y0) (its size and values,
+   and, when need_jac, whether it gives the Hessian as a second output),
+   the source of Newton's matrix, the number of events, OutputFcn's
+   "init" (odeplot when nargout is 0); the core's system into sys */
+symmex_ctx *symmex_problem (const char *solver, const symmex_args *a,
+                            symmex_opts *o, int need_jac, int nlhs,
+                            sym_system *sys);
+
+/* callbacks.c: the core's callbacks (user: the symmex_ctx) */
+int symmex_cb_rhs (double t, const double *y, double *dy, void *user);
+int symmex_cb_rhs_batch (int k, const double *t, const double *y,
+                         double *dy, void *user);
+int symmex_cb_jac (double t, const double *y, double *df, void *user);
+int symmex_cb_rhs_jac (double t, const double *y, double *dy, double *df,
+                       void *user);
+int symmex_cb_events (double t, const double *y, double *value,
+                      int *isterminal, int *direction, void *user);
+/* a user's function: args = {f, t, y, ...}, by name when it has one */
+void symmex_call (int nout, mxArray **out, int nargs, mxArray **args,
+                  const char *name);
+/* the name f can be called by (into name), or "" for feval */
+void symmex_direct_name (const mxArray *f, char *name, size_t len);
+/* a value returned by FCN or the Hessian: checked, as doubles */
+const double *symmex_checked (symmex_ctx *c, mxArray **pa, size_t k,
+                              const char *what, int logical_ok, double t,
+                              const char *expect_fmt, ...);
+/* what a Hessian must be, for messages (arguments n, n, n^2) */
+extern const char *const SYMMEX_HESS_EXPECT;
+/* a is n-by-n, a row or a column (or not of n^2 elements at all) */
+int symmex_hessian_shape (const mxArray *a, int n);
+/* a's double form (a new array) */
+mxArray *symmex_to_double (const mxArray *a);
+/* A value returned by a user's function, replaced in *pa by its full
+   form (sparse values are taken as full), or by its double form (a
+   numeric, logical or char value); the replaced array is destroyed. */
+mxArray *symmex_take_full (mxArray **pa);
+mxArray *symmex_take_double (mxArray **pa);
+
+/* ------------------------------------------------------------ outputs */
+/* the core's output and event sinks (user: the symmex_ctx) */
+int symmex_sink_row (double t, const double *y, void *user);
+int symmex_sink_event (double te, const double *ye, int ie, void *user);
+/* OutputFcn (t, y(OutputSel), flag, extras...): its stop flag */
+int symmex_outputfcn (symmex_ctx *c, const double *t, int nt,
+                      const double *y, const char *flag);
+/* [t, y, te, ye, ie] or sol into plhs */
+void symmex_outputs (const symmex_method *m, const void *own,
+                     const symmex_ctx *c, const sym_stats *st,
+                     const char *jac_used, int nlhs, mxArray *plhs[]);
+
+/* ------------------------------------------------------------ messages */
+/* The warning of a run that could not go on (or the error it is), after
+   OutputFcn's "done"; drops the events beyond an OutputFcn stop */
+void symmex_report (const symmex_method *m, const void *own,
+                    const symmex_opts *o, const symmex_args *a,
+                    symmex_ctx *c, const sym_stats *st, int status);
+/* the source of Newton's matrices as Stats and sol.stats say it */
+void symmex_jac_used (const symmex_ctx *c, const sym_stats *st, char *buf,
+                      size_t len);
+void symmex_print_stats (const sym_stats *st, const char *jac_used);
 
 /* "1x2 double", "2x2 sparse double", "1x1 complex double", "1x3 char": what
    the user gave, for messages (into buf, returned) */
@@ -72,23 +213,30 @@ const char *symmex_describe (const mxArray *v, char *buf, size_t len);
 const char *symmex_describe_word (const mxArray *v, char *buf, size_t len);
 /* the same for a value that should be a function; a name in quotes */
 const char *symmex_describe_fn (const mxArray *v, char *buf, size_t len);
-
 /* x for a message, as Octave writes it: printf's fmt ("%g", "%.17g"), or
-   NaN, Inf, -Inf (C's printf writes nan, -nan, inf); into buf, returned.
-   SYMMEX_NUM (x, fmt) gives it a buffer of its own, valid for the
-   statement it is in. */
+   NaN, Inf, -Inf; into buf, returned.  SYMMEX_NUM (x, fmt) gives it a
+   buffer of its own, valid for the statement it is in. */
 const char *symmex_num (char *buf, size_t len, const char *fmt, double x);
 #define SYMMEX_NUM(x, fmt) symmex_num ((char[40]) { 0 }, 40, (fmt), (x))
 
-/* a itself, or when a is sparse its full copy (freed when the MEX function
-   returns, or by the caller): sparse arguments, options and values returned
-   by the user's functions are taken as their full equivalents. */
+/* ------------------------------------------------------------ values */
+/* Is a a function handle, or the name of a function (not of a script or
+   of another file)? */
+int symmex_is_function (const mxArray *a);
+/* a is an r-by-k matrix (two dimensions: mxGetN multiplies the trailing
+   ones) */
+int symmex_is_size (const mxArray *a, size_t r, size_t k);
+/* a is a vector: two dimensions, one of them 1 */
+int symmex_is_vector (const mxArray *a);
+/* a itself, or when a is sparse its full copy: sparse arguments, options
+   and values returned by the user's functions are taken as their full
+   equivalents. */
 mxArray *symmex_full (const mxArray *a);
 
 /* Octave's mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt put "NAME: " (the
    running MEX function's name) in front of every message, and ours already
    begin with the solver's name ("odeSPVI: Y0 must ..."): the user would see
-   it twice.  These wrappers (options.c) format the message, drop that
+   it twice.  These wrappers (messages.c) format the message, drop that
    leading "NAME: " and pass the rest on, so it appears once.  Every
    mexErrMsgIdAndTxt/mexWarnMsgIdAndTxt of the MEX layer goes through them. */
 void symmex_err (const char *id, const char *fmt, ...);
@@ -97,5 +245,8 @@ void symmex_warn (const char *id, const char *fmt, ...);
 #define mexErrMsgIdAndTxt symmex_err
 #define mexWarnMsgIdAndTxt symmex_warn
 #endif
+
+/* the identifier of bad input */
+#define SYMMEX_BADARG "Octave:invalid-input-arg"
 
 #endif

@@ -237,27 +237,58 @@ tp_system (tprob *P, int kind, int with_jac)
   return s;
 }
 
-static inline sym_method_opts
-tp_opts (int separable, int want_error, int want_dense)
+/* the same as the core evaluates it, for the steppers driven directly */
+static inline sym_eval
+tp_eval (tprob *P, int kind, int with_jac)
 {
+  sym_system s = tp_system (P, kind, with_jac);
+  sym_eval ev;
+  sym_eval_init (&ev, &s);
+  return ev;
+}
+
+/* the options: Separable (own points at static storage, so that the
+   struct may be copied), dense output wanted */
+static inline sym_method_opts
+tp_opts (int separable, int want_dense)
+{
+  static const sym_onestep_opts own[2] = { { 0 }, { 1 } };
   sym_method_opts o;
   memset (&o, 0, sizeof (o));
-  o.separable = separable;
-  o.want_error = want_error;
+  o.own = &own[separable != 0];
   o.want_dense = want_dense;
   return o;
 }
 
-/* N fixed steps of h from (t0, y0) into y (n); if traj != NULL, the states
-   y_0..y_N go into traj ((N+1)-by-n, row k at traj + k n).  with_err: ask
-   for yerr every step.  Returns the first failing status. */
-static inline int
-run_fixed (const sym_stepper_type *T, sym_system *sys,
-           const sym_method_opts *o, double t0, double h, long N,
-           const double *y0, double *y, double *traj, int with_err)
+/* A stepper for fixed steps, or (adaptive) switched to the adaptive steps
+   of a run with tolerances, which ask for the error estimate; NULL with
+   *st on failure */
+static inline void *
+tp_alloc (const sym_stepper_type *T, int dim, const sym_method_opts *o,
+          int adaptive, int *st)
 {
-  int st, n = 2 * sys->dim;
-  void *S = T->alloc (sys, o, &st);
+  static const double atol = 1e-6;
+  static const sym_tolerances tol = { 1e-6, &atol, 1, 0 };
+  void *S = T->alloc (dim, o, st);
+  if (S && adaptive && (*st = T->set_tolerances (S, &tol)))
+    {
+      T->free (S);
+      return NULL;
+    }
+  return S;
+}
+
+/* N fixed steps of h from (t0, y0) into y (n); if traj != NULL, the states
+   y_0..y_N go into traj ((N+1)-by-n, row k at traj + k n).  adaptive: the
+   stepper of an adaptive run, asked for yerr every step.  Returns the
+   first failing status. */
+static inline int
+run_fixed (const sym_stepper_type *T, sym_eval *ev,
+           const sym_method_opts *o, double t0, double h, long N,
+           const double *y0, double *y, double *traj, int adaptive)
+{
+  int st, n = 2 * ev->dim;
+  void *S = tp_alloc (T, ev->dim, o, adaptive, &st);
   if (! S)
     return st;
   double yc[8], yn[8], ye[8];
@@ -267,9 +298,9 @@ run_fixed (const sym_stepper_type *T, sym_system *sys,
   double t = t0;
   for (long k = 0; k < N; k++)
     {
-      /* times as driver.c forms them in fixed-step mode */
+      /* times as the driver forms them in fixed-step mode */
       double tnew = t0 + h * (double) (k + 1);
-      st = T->step (S, sys, t, tnew - t, tnew, yc, yn, with_err ? ye : NULL);
+      st = T->step (S, ev, t, tnew - t, tnew, yc, yn, adaptive ? ye : NULL);
       if (st)
         break;
       T->accept (S);
@@ -281,6 +312,18 @@ run_fixed (const sym_stepper_type *T, sym_system *sys,
   T->free (S);
   memcpy (y, yc, (size_t) n * sizeof (double));
   return st;
+}
+
+static inline const sym_stepper_type *
+stepper (int sv)
+{
+  return sv ? sym_step_sv : sym_step_se;
+}
+
+static inline const char *
+mname (int sv)
+{
+  return sv ? "SV" : "SE";
 }
 
 /* classical RK4 with N steps of h (reference) */

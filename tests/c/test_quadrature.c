@@ -3,6 +3,7 @@
 
 /* test_quadrature.c -- Gauss-Legendre rules and Legendre polynomials. */
 #include "sym.h"
+#include "numerics/numerics.h"
 #include "testutil.h"
 
 #include <float.h>
@@ -60,7 +61,7 @@ known_rule (int m, double *z, double *w)
 }
 
 static void
-test_known (void)
+scenario_known (void)
 {
   double z[5], w[5], zk[5], wk[5];
   for (int m = 1; m <= 5; m++)
@@ -78,7 +79,7 @@ test_known (void)
 /* Sum of weights, symmetry, ascending order, exactness up to degree
    2m-1, and inexactness at degree 2m (the rule is exactly Gauss). */
 static void
-test_rules (void)
+scenario_rules (void)
 {
   enum { MMAX = 64 };
   double z[MMAX], w[MMAX];
@@ -154,7 +155,7 @@ failing_alloc (size_t n)
 }
 
 static void
-test_bad_input (void)
+scenario_bad_input (void)
 {
   double z[5], w[5];
   CHECK (sym_gauss_legendre (0, z, w) == SYM_EBADINPUT, "m = 0");
@@ -186,7 +187,7 @@ closed_forms (double x, double *l, double *dl)
 }
 
 static void
-test_legendre (void)
+scenario_legendre (void)
 {
   double l[40], dl[40], lc[6], dlc[6];
   const double xs[] = { -1.0, -0.9, -0.31, 0.0, 0.25, 0.5, 0.77, 1.0 };
@@ -260,9 +261,9 @@ test_legendre (void)
 int
 main (void)
 {
-  test_known ();
-  test_rules ();
-  test_bad_input ();
-  test_legendre ();
+  scenario_known ();
+  scenario_rules ();
+  scenario_bad_input ();
+  scenario_legendre ();
   return tu_finish ("test_quadrature");
 }

@@ -7,18 +7,6 @@
    backward steps.  Calls the stepper tables directly (no driver). */
 #include "se_sv_systems.h"
 
-static const sym_stepper_type *
-stepper (int sv)
-{
-  return sv ? sym_step_sv : sym_step_se;
-}
-
-static const char *
-mname (int sv)
-{
-  return sv ? "SV" : "SE";
-}
-
 /* least-squares slope of log2(err) against -log2(h) for h halved each time */
 static double
 ls_slope (int m, const double *e)
@@ -34,7 +22,7 @@ ls_slope (int m, const double *e)
 
 /* ------------------------------------------------------------ orders */
 static void
-test_orders (void)
+scenario_orders (void)
 {
   /* h = 5/400 .. 5/3200 (SE at 5/100 is not yet asymptotic on P_H1);
      reference: RK4 with 2e4 steps on [0, 5] (checked against 4e4) */
@@ -49,7 +37,7 @@ test_orders (void)
   for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
     {
       tprob P;
-      sym_system sys = tp_system (&P, cases[c].kind, 1);
+      sym_eval ev = tp_eval (&P, cases[c].kind, 1);
       double yref[2], yref2[2];
       rk4 (&P, 0, T / 20000, 20000, cases[c].y0, yref);
       rk4 (&P, 0, T / 40000, 40000, cases[c].y0, yref2);
@@ -58,12 +46,12 @@ test_orders (void)
       for (int sv = 0; sv < 2; sv++)
         {
           double e[4];
-          sym_method_opts o = tp_opts (cases[c].sep, 0, 0);
+          sym_method_opts o = tp_opts (cases[c].sep, 0);
           for (int j = 0; j < 4; j++)
             {
               long N = 400L << j;
               double y[2];
-              int st = run_fixed (stepper (sv), &sys, &o, 0, T / N, N,
+              int st = run_fixed (stepper (sv), &ev, &o, 0, T / N, N,
                                   cases[c].y0, y, NULL, 0);
               CHECK (st == 0, "status %d", st);
               e[j] = maxdiff (2, y, yref);
@@ -90,7 +78,7 @@ test_orders (void)
 /* Step by step: from each y_k of the stepper's own run, the naive scheme
    (fixed-point iteration, no Newton) must give y_{k+1}. */
 static void
-test_naive (void)
+scenario_naive (void)
 {
   struct { int kind, sep; double y0[4]; double h; } cases[] = {
     { P_H1, 0, { 0.5, 0.8 }, 0.05 },
@@ -109,13 +97,13 @@ test_naive (void)
       for (int err = 0; err < 2; err++)
         {
           tprob P;
-          sym_system sys = tp_system (&P, cases[c].kind, 1);
-          int n = 2 * sys.dim, st;
+          sym_eval ev = tp_eval (&P, cases[c].kind, 1);
+          int n = 2 * ev.dim, st;
           const long N = 200;
           double h = back ? -cases[c].h : cases[c].h, ye[4];
           /* with the error estimate the predictors start from f(t_k, y_k) */
-          sym_method_opts o = tp_opts (cases[c].sep, err, 0);
-          void *S = stepper (sv)->alloc (&sys, &o, &st);
+          sym_method_opts o = tp_opts (cases[c].sep, 0);
+          void *S = tp_alloc (stepper (sv), ev.dim, &o, err, &st);
           CHECK (S != NULL, "alloc");
           if (! S)
             continue;
@@ -125,7 +113,7 @@ test_naive (void)
           memcpy (ynaive, cases[c].y0, sizeof y);
           for (long k = 0; k < N; k++)
             {
-              st = stepper (sv)->step (S, &sys, t, h, t + h, y, yn,
+              st = stepper (sv)->step (S, &ev, t, h, t + h, y, yn,
                                        err ? ye : NULL);
               if (st)
                 break;
@@ -140,13 +128,14 @@ test_naive (void)
                   naive_se (&P, t, h, y, yv);
                   naive_se (&P, t, h, ynaive, ynaive);
                 }
-              worst = fmax (worst, maxdiff (n, yv, yn) / fmax (1, maxabs (n, yn)));
+              worst = fmax (worst, maxdiff (n, yv, yn)
+                                   / fmax (1, maxabs (n, yn)));
               runworst = fmax (runworst, maxdiff (n, ynaive, yn));
               memcpy (y, yn, sizeof y);
               t += h;
             }
           CHECK (st == 0, "status %d", st);
-          printf ("naive %s kind %d sep %d h %+g want_error %d: per step "
+          printf ("naive %s kind %d sep %d h %+g adaptive %d: per step "
                   "%.2e, whole run %.2e (%ld steps)\n", mname (sv),
                   cases[c].kind, cases[c].sep, h, err, worst, runworst, N);
           CHECK (worst <= 1e-13, "%s kind %d sep %d: naive per step %g",
@@ -170,10 +159,10 @@ damped_exact (double c, double t, double *y)
 }
 
 static void
-test_damped (void)
+scenario_damped (void)
 {
   tprob P;
-  sym_system sys = tp_system (&P, P_DAMPED, 1);
+  sym_eval ev = tp_eval (&P, P_DAMPED, 1);
   const double T = 10, y0[2] = { 1, 0 };
   double yex[2];
   damped_exact (P.c, T, yex);
@@ -181,17 +170,18 @@ test_damped (void)
     /* the formula against RK4 */
     double yr[2];
     rk4 (&P, 0, T / 20000, 20000, y0, yr);
-    CHECK (maxdiff (2, yr, yex) < 1e-11, "damped exact %g", maxdiff (2, yr, yex));
+    CHECK (maxdiff (2, yr, yex) < 1e-11, "damped exact %g",
+           maxdiff (2, yr, yex));
   }
   for (int sv = 0; sv < 2; sv++)
     {
       double e[3];
-      sym_method_opts o = tp_opts (0, 0, 0);
+      sym_method_opts o = tp_opts (0, 0);
       for (int j = 0; j < 3; j++)
         {
           long N = 400L << j;
           double y[2];
-          int st = run_fixed (stepper (sv), &sys, &o, 0, T / N, N, y0, y,
+          int st = run_fixed (stepper (sv), &ev, &o, 0, T / N, N, y0, y,
                               NULL, 0);
           CHECK (st == 0, "status %d", st);
           e[j] = maxdiff (2, y, yex);
@@ -210,20 +200,20 @@ test_damped (void)
    stepper (hist 0), or after an accepted step of 0.7 h ending at (t, y0)
    (hist 1; y0 is then overwritten by that step's end). */
 static int
-est_step (int sv, sym_system *sys, const sym_method_opts *o, int hist,
+est_step (int sv, sym_eval *ev, const sym_method_opts *o, int hist,
           double t, double h, double *y0, double *y, double *ye)
 {
   int st;
-  void *S = stepper (sv)->alloc (sys, o, &st);
+  void *S = tp_alloc (stepper (sv), ev->dim, o, 1, &st);
   if (! st && hist)
     {
       double ys[4];
       memcpy (ys, y0, sizeof ys);
-      st = stepper (sv)->step (S, sys, t - 0.7 * h, 0.7 * h, t, ys, y0, ye);
+      st = stepper (sv)->step (S, ev, t - 0.7 * h, 0.7 * h, t, ys, y0, ye);
       stepper (sv)->accept (S);
     }
   if (! st)
-    st = stepper (sv)->step (S, sys, t, h, t + h, y0, y, ye);
+    st = stepper (sv)->step (S, ev, t, h, t + h, y0, y, ye);
   stepper (sv)->free (S);
   return st;
 }
@@ -233,7 +223,7 @@ est_step (int sv, sym_system *sys, const sym_method_opts *o, int hist,
    is of higher order), SV's difference plus the trapezoidal rule's error.
    In p of separable H, SV's difference alone is zero. */
 static void
-test_error_estimate (void)
+scenario_error_estimate (void)
 {
   struct { int kind, sep; double y0[4]; } cases[] = {
     { P_H1, 0, { 0.5, 0.8 } },
@@ -247,15 +237,15 @@ test_error_estimate (void)
       for (int hist = 0; hist < 2; hist++)
         {
           tprob P;
-          sym_system sys = tp_system (&P, cases[c].kind, 1);
-          int n = 2 * sys.dim, st;
-          sym_method_opts o = tp_opts (cases[c].sep, 1, 0);
+          sym_eval ev = tp_eval (&P, cases[c].kind, 1);
+          int n = 2 * ev.dim, st;
+          sym_method_opts o = tp_opts (cases[c].sep, 0);
           double e[4], dev[4];
           for (int j = 0; j < 4; j++)
             {
               double h = 0.04 / (1 << j), y0[4], y[4], ye[4], yr[4];
               memcpy (y0, cases[c].y0, sizeof y0);
-              st = est_step (sv, &sys, &o, hist, 0.3, h, y0, y, ye);
+              st = est_step (sv, &ev, &o, hist, 0.3, h, y0, y, ye);
               CHECK (st == 0, "status %d", st);
               e[j] = maxabs (n, ye);
               rk4 (&P, 0.3, h / 200, 200, y0, yr);
@@ -281,41 +271,50 @@ test_error_estimate (void)
                  "estimate %s kind %d sep %d hist %d: deviation %g .. %g",
                  mname (sv), cases[c].kind, cases[c].sep, hist, dev[0],
                  dev[3]);
-          CHECK (stepper (sv)->err_order (NULL) == (sv ? 2 : 1), "err_order");
-          CHECK (stepper (sv)->method_order (NULL) == (sv ? 2 : 1), "order");
-          CHECK (stepper (sv)->order == (sv ? 2 : 1), "order field");
+          /* the orders, of fixed and of adaptive steps */
+          int est = -1, stf, sta;
+          void *Sf = tp_alloc (stepper (sv), ev.dim, &o, 0, &stf);
+          void *Sa = tp_alloc (stepper (sv), ev.dim, &o, 1, &sta);
+          CHECK (Sf && Sa && stepper (sv)->order (Sa, &est) == (sv ? 2 : 1)
+                 && est == (sv ? 2 : 1), "order %d of the estimate", est);
+          CHECK (Sa && stepper (sv)->order (Sa, NULL) == (sv ? 2 : 1),
+                 "order");
+          CHECK (Sf && stepper (sv)->order (Sf, NULL) == (sv ? 2 : 1),
+                 "order of fixed steps");
+          stepper (sv)->free (Sf);
+          stepper (sv)->free (Sa);
         }
 }
 
 /* ------------------------------------------------------------ dense */
 static void
-test_dense (void)
+scenario_dense (void)
 {
   for (int sv = 0; sv < 2; sv++)
     for (int sep = 0; sep < 2; sep++)
       for (int want = 0; want < 2; want++)
         {
           tprob P;
-          sym_system sys = tp_system (&P, P_PEND, 1);
-          sym_method_opts o = tp_opts (sep, 0, want);
+          sym_eval ev = tp_eval (&P, P_PEND, 1);
+          sym_method_opts o = tp_opts (sep, want);
           int st;
-          void *S = stepper (sv)->alloc (&sys, &o, &st);
+          void *S = tp_alloc (stepper (sv), ev.dim, &o, 0, &st);
           double y0[2] = { 1.2, 0.3 }, y1[2], y2[2], yd[2], ya[2];
-          CHECK (stepper (sv)->dense (S, &sys, 0.0, yd) == SYM_EBADINPUT,
+          CHECK (stepper (sv)->dense (S, &ev, 0.0, yd) == SYM_EBADINPUT,
                  "dense before any step");
           const double h = 0.1, t0 = 0.7;
-          st = stepper (sv)->step (S, &sys, t0, h, t0 + h, y0, y1, NULL);
+          st = stepper (sv)->step (S, &ev, t0, h, t0 + h, y0, y1, NULL);
           stepper (sv)->accept (S);
-          st |= stepper (sv)->step (S, &sys, t0 + h, h, t0 + 2 * h, y1, y2,
+          st |= stepper (sv)->step (S, &ev, t0 + h, h, t0 + 2 * h, y1, y2,
                                     NULL);
           CHECK (st == 0, "status");
           /* dense refers to the last ACCEPTED step: [t0, t0+h] */
-          stepper (sv)->dense (S, &sys, t0, yd);
+          stepper (sv)->dense (S, &ev, t0, yd);
           CHECK (memcmp (yd, y0, sizeof yd) == 0, "dense at start exact");
-          stepper (sv)->dense (S, &sys, t0 + h, yd);
+          stepper (sv)->dense (S, &ev, t0 + h, yd);
           CHECK (memcmp (yd, y1, sizeof yd) == 0, "dense at end exact");
           stepper (sv)->accept (S);
-          stepper (sv)->dense (S, &sys, t0 + 2 * h, yd);
+          stepper (sv)->dense (S, &ev, t0 + 2 * h, yd);
           CHECK (memcmp (yd, y2, sizeof yd) == 0, "dense at end exact (2)");
           /* inside: against the exact solution from y1; the local error
              at the step's end sets the scale */
@@ -325,11 +324,12 @@ test_dense (void)
           for (int j = 1; j < 10; j++)
             {
               double th = j / 10.0, t = t0 + h + th * h;
-              stepper (sv)->dense (S, &sys, t, yd);
+              stepper (sv)->dense (S, &ev, t, yd);
               rk4 (&P, t0 + h, th * h / 100, 100, y1, ya);
               worst = fmax (worst, maxdiff (2, yd, ya));
               for (int i = 0; i < 2; i++)
-                lin = fmax (lin, fabs (yd[i] - (y1[i] + th * (y2[i] - y1[i]))));
+                lin = fmax (lin, fabs (yd[i] - (y1[i] + th * (y2[i]
+                                                              - y1[i]))));
             }
           printf ("dense %s sep %d want_dense %d: max error inside the step "
                   "%.2e, local error at its end %.2e (%s)\n", mname (sv), sep,
@@ -345,18 +345,18 @@ test_dense (void)
   for (int sv = 0; sv < 2; sv++)
     {
       tprob P;
-      sym_system sys = tp_system (&P, P_H1, 1);
-      sym_method_opts o = tp_opts (0, 0, 1);
+      sym_eval ev = tp_eval (&P, P_H1, 1);
+      sym_method_opts o = tp_opts (0, 1);
       double e[3];
       for (int j = 0; j < 3; j++)
         {
           int st;
           double h = 0.1 / (1 << j), y0[2] = { 0.5, 0.8 }, y1[2], yd[2],
                  ya[2];
-          void *S = stepper (sv)->alloc (&sys, &o, &st);
-          stepper (sv)->step (S, &sys, 0, h, h, y0, y1, NULL);
+          void *S = tp_alloc (stepper (sv), ev.dim, &o, 0, &st);
+          stepper (sv)->step (S, &ev, 0, h, h, y0, y1, NULL);
           stepper (sv)->accept (S);
-          stepper (sv)->dense (S, &sys, 0.5 * h, yd);
+          stepper (sv)->dense (S, &ev, 0.5 * h, yd);
           rk4 (&P, 0, h / 200, 100, y0, ya);
           e[j] = maxdiff (2, yd, ya);
           stepper (sv)->free (S);
@@ -371,23 +371,23 @@ test_dense (void)
 
 /* ------------------------------------------------------------ backward */
 static void
-test_backward (void)
+scenario_backward (void)
 {
   /* from the reference state at t = 5 back to t = 0 */
   const double T = 5.0, y0[2] = { 0.5, 0.8 };
   tprob P;
-  sym_system sys = tp_system (&P, P_H1F, 1);
+  sym_eval ev = tp_eval (&P, P_H1F, 1);
   double yT[2];
   rk4 (&P, 0, T / 20000, 20000, y0, yT);
   for (int sv = 0; sv < 2; sv++)
     {
       double e[3];
-      sym_method_opts o = tp_opts (0, 0, 0);
+      sym_method_opts o = tp_opts (0, 0);
       for (int j = 0; j < 3; j++)
         {
           long N = 200L << j;
           double y[2];
-          int st = run_fixed (stepper (sv), &sys, &o, T, -T / N, N, yT, y,
+          int st = run_fixed (stepper (sv), &ev, &o, T, -T / N, N, yT, y,
                               NULL, 0);
           CHECK (st == 0, "status %d", st);
           e[j] = maxdiff (2, y, y0);
@@ -404,11 +404,11 @@ test_backward (void)
 int
 main (void)
 {
-  test_orders ();
-  test_naive ();
-  test_damped ();
-  test_error_estimate ();
-  test_dense ();
-  test_backward ();
+  scenario_orders ();
+  scenario_naive ();
+  scenario_damped ();
+  scenario_error_estimate ();
+  scenario_dense ();
+  scenario_backward ();
   return tu_finish ("test_se_sv_accuracy");
 }

@@ -6,40 +6,28 @@
    of angular momentum, time reversibility of SV. */
 #include "se_sv_systems.h"
 
-static const sym_stepper_type *
-stepper (int sv)
-{
-  return sv ? sym_step_sv : sym_step_se;
-}
-
-static const char *
-mname (int sv)
-{
-  return sv ? "SV" : "SE";
-}
-
 /* one step from a fresh stepper (so the map depends on y only) */
 static int
-one_step (int sv, sym_system *sys, const sym_method_opts *o, double t,
+one_step (int sv, sym_eval *ev, const sym_method_opts *o, double t,
           double h, const double *y, double *y1)
 {
   int st;
-  void *S = stepper (sv)->alloc (sys, o, &st);
+  void *S = tp_alloc (stepper (sv), ev->dim, o, 0, &st);
   if (! S)
     return st;
-  st = stepper (sv)->step (S, sys, t, h, t + h, y, y1, NULL);
+  st = stepper (sv)->step (S, ev, t, h, t + h, y, y1, NULL);
   stepper (sv)->free (S);
   return st;
 }
 
 /* explicit Euler, not symplectic: shows that the test can fail */
 static int
-one_step_euler (sym_system *sys, double t, double h, const double *y,
+one_step_euler (sym_eval *ev, double t, double h, const double *y,
                 double *y1)
 {
   double f[8];
-  int n = 2 * sys->dim;
-  tp_f (sys->user, t, y, f);
+  int n = 2 * ev->dim;
+  tp_f (ev->user, t, y, f);
   for (int i = 0; i < n; i++)
     y1[i] = y[i] + h * f[i];
   return 0;
@@ -48,10 +36,10 @@ one_step_euler (sym_system *sys, double t, double h, const double *y,
 /* max |M^T J M - J| with M the Jacobian of the step map by central
    differences (delta 1e-5: truncation ~1e-10, round-off ~1e-11) */
 static double
-symplectic_defect (int method, sym_system *sys, const sym_method_opts *o,
+symplectic_defect (int method, sym_eval *ev, const sym_method_opts *o,
                    double t, double h, const double *y)
 {
-  const int d = sys->dim, n = 2 * d;
+  const int d = ev->dim, n = 2 * d;
   const double del = 1e-5;
   double M[64], yp[8], ym[8], fp[8], fm[8];
   for (int j = 0; j < n; j++)
@@ -62,11 +50,11 @@ symplectic_defect (int method, sym_system *sys, const sym_method_opts *o,
       ym[j] -= del;
       int st;
       if (method < 2)
-        st = one_step (method, sys, o, t, h, yp, fp)
-             | one_step (method, sys, o, t, h, ym, fm);
+        st = one_step (method, ev, o, t, h, yp, fp)
+             | one_step (method, ev, o, t, h, ym, fm);
       else
-        st = one_step_euler (sys, t, h, yp, fp)
-             | one_step_euler (sys, t, h, ym, fm);
+        st = one_step_euler (ev, t, h, yp, fp)
+             | one_step_euler (ev, t, h, ym, fm);
       if (st)
         return INFINITY;
       for (int i = 0; i < n; i++)
@@ -88,7 +76,7 @@ symplectic_defect (int method, sym_system *sys, const sym_method_opts *o,
 }
 
 static void
-test_symplectic (void)
+scenario_symplectic (void)
 {
   struct { int kind, sep; double y0[4]; double h; } cases[] = {
     { P_H1, 0, { 0.5, 0.8 }, 0.1 },
@@ -102,11 +90,11 @@ test_symplectic (void)
   for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
     {
       tprob P;
-      sym_system sys = tp_system (&P, cases[c].kind, 1);
-      sym_method_opts o = tp_opts (cases[c].sep, 0, 0);
+      sym_eval ev = tp_eval (&P, cases[c].kind, 1);
+      sym_method_opts o = tp_opts (cases[c].sep, 0);
       for (int m = 0; m < 3; m++)
         {
-          double def = symplectic_defect (m, &sys, &o, 0.2, cases[c].h,
+          double def = symplectic_defect (m, &ev, &o, 0.2, cases[c].h,
                                           cases[c].y0);
           printf ("symplecticity %s kind %d sep %d h %+g: |M'JM - J| = %.2e\n",
                   m == 2 ? "Euler" : mname (m), cases[c].kind, cases[c].sep,
@@ -122,22 +110,22 @@ test_symplectic (void)
 
 /* SV on the harmonic oscillator, h = 0.1, 1e5 steps */
 static void
-test_energy (void)
+scenario_energy (void)
 {
   for (int sep = 0; sep < 2; sep++)
     {
       tprob P;
-      sym_system sys = tp_system (&P, P_HO, 1);
-      sym_method_opts o = tp_opts (sep, 0, 0);
+      sym_eval ev = tp_eval (&P, P_HO, 1);
+      sym_method_opts o = tp_opts (sep, 0);
       const long N = 100000;
       const double h = 0.1;
       int st;
-      void *S = sym_step_sv->alloc (&sys, &o, &st);
+      void *S = tp_alloc (sym_step_sv, ev.dim, &o, 0, &st);
       double y[2] = { 1, 0 }, yn[2], t = 0;
       double E0 = tp_energy (&P, y), emax = 0, efirst = 0, elast = 0;
       for (long k = 0; k < N && ! st; k++)
         {
-          st = sym_step_sv->step (S, &sys, t, h, t + h, y, yn, NULL);
+          st = sym_step_sv->step (S, &ev, t, h, t + h, y, yn, NULL);
           sym_step_sv->accept (S);
           t += h;
           memcpy (y, yn, sizeof y);
@@ -151,7 +139,7 @@ test_energy (void)
       CHECK (st == 0, "status %d", st);
       printf ("energy SV HO sep %d: max rel. error %.4e, first 10%% %.4e, "
               "last 10%% %.4e (ratio %.4f); rhs calls/step %.3f\n", sep, emax,
-              efirst, elast, elast / efirst, (double) sys.cnt.nrhs / N);
+              efirst, elast, elast / efirst, (double) ev.st.cnt.nrhs / N);
       CHECK (emax <= 3e-3, "energy error %g", emax);
       CHECK (elast <= 1.5 * efirst, "energy drift %g vs %g", elast, efirst);
       sym_step_sv->free (S);
@@ -160,24 +148,24 @@ test_energy (void)
 
 /* Kepler, e = 0.6: angular momentum q1 p2 - q2 p1 */
 static void
-test_kepler (void)
+scenario_kepler (void)
 {
   for (int sv = 0; sv < 2; sv++)
     for (int sep = 0; sep < 2; sep++)
       {
         tprob P;
-        sym_system sys = tp_system (&P, P_KEPLER, 1);
-        sym_method_opts o = tp_opts (sep, 0, 0);
+        sym_eval ev = tp_eval (&P, P_KEPLER, 1);
+        sym_method_opts o = tp_opts (sep, 0);
         const long N = 10000;
         const double h = 0.005;
         int st;
-        void *S = stepper (sv)->alloc (&sys, &o, &st);
+        void *S = tp_alloc (stepper (sv), ev.dim, &o, 0, &st);
         double y[4] = { 0.4, 0, 0, 2 }, yn[4], t = 0;
         double L0 = y[0] * y[3] - y[1] * y[2], E0 = tp_energy (&P, y);
         double lmax = 0, emax = 0;
         for (long k = 0; k < N && ! st; k++)
           {
-            st = stepper (sv)->step (S, &sys, t, h, t + h, y, yn, NULL);
+            st = stepper (sv)->step (S, &ev, t, h, t + h, y, yn, NULL);
             stepper (sv)->accept (S);
             t += h;
             memcpy (y, yn, sizeof y);
@@ -188,8 +176,8 @@ test_kepler (void)
         printf ("Kepler %s sep %d: %ld steps of %g: max rel. angular momentum "
                 "error %.2e, energy error %.2e; rhs/step %.3f, Newton it/step "
                 "%.3f, LU %ld\n", mname (sv), sep, N, h, lmax, emax,
-                (double) sys.cnt.nrhs / N, (double) sys.cnt.nnewton / N,
-                sys.cnt.nlu);
+                (double) ev.st.cnt.nrhs / N, (double) ev.st.cnt.nnewton / N,
+                ev.st.cnt.nlu);
         CHECK (lmax <= 1e-12, "%s sep %d: angular momentum %g", mname (sv),
                sep, lmax);
         stepper (sv)->free (S);
@@ -201,7 +189,7 @@ test_kepler (void)
    t) over the run, so there only the check that each single step is undone
    applies (a second stepper steps by -h from the end of each step). */
 static void
-test_reversible (void)
+scenario_reversible (void)
 {
   struct { int kind, sep; double y0[4]; double h; int whole; } cases[] = {
     { P_H1, 0, { 0.5, 0.8 }, 0.05, 1 },
@@ -218,30 +206,31 @@ test_reversible (void)
     for (int err = 0; err < 2; err++)
       {
         tprob P;
-        sym_system sys = tp_system (&P, cases[c].kind, 1);
-        int n = 2 * sys.dim, st, st2;
-        sym_method_opts o = tp_opts (cases[c].sep, err, 0);
+        sym_eval ev = tp_eval (&P, cases[c].kind, 1);
+        int n = 2 * ev.dim, st, st2;
+        sym_method_opts o = tp_opts (cases[c].sep, 0);
         const long N = 1000;
         double h = cases[c].h, ye[8], y[8], yn[8], yb[8], step_dev = 0;
-        void *S = sym_step_sv->alloc (&sys, &o, &st);
-        void *S2 = sym_step_sv->alloc (&sys, &o, &st2);
+        void *S = tp_alloc (sym_step_sv, ev.dim, &o, err, &st);
+        void *S2 = tp_alloc (sym_step_sv, ev.dim, &o, err, &st2);
         memcpy (y, cases[c].y0, sizeof cases[c].y0);
         double t = 0.1;
         for (long k = 0; k < 2 * N && ! st; k++)
           {
             double hk = k < N ? h : -h;
             double tn = 0.1 + (k < N ? (k + 1) : (2 * N - k - 1)) * h;
-            st = sym_step_sv->step (S, &sys, t, hk, t + hk, y, yn,
+            st = sym_step_sv->step (S, &ev, t, hk, t + hk, y, yn,
                                     err ? ye : NULL);
             sym_step_sv->accept (S);
-            st |= sym_step_sv->step (S2, &sys, tn, -hk, tn - hk, yn, yb, NULL);
-            step_dev = fmax (step_dev, maxdiff (n, yb, y) / fmax (1, maxabs (n, y)));
+            st |= sym_step_sv->step (S2, &ev, tn, -hk, tn - hk, yn, yb, NULL);
+            step_dev = fmax (step_dev, maxdiff (n, yb, y)
+                                       / fmax (1, maxabs (n, y)));
             t = tn;
             memcpy (y, yn, sizeof y);
           }
         double dev = maxdiff (n, y, cases[c].y0);
         CHECK (st == 0, "status %d", st);
-        printf ("reversibility SV kind %d sep %d want_error %d: single steps "
+        printf ("reversibility SV kind %d sep %d adaptive %d: single steps "
                 "undone to %.2e; |y - y0| after %ld + %ld steps = %.2e%s\n",
                 cases[c].kind, cases[c].sep, err, step_dev, N, N, dev,
                 cases[c].whole ? "" : " (chaotic: not checked)");
@@ -259,9 +248,9 @@ test_reversible (void)
 int
 main (void)
 {
-  test_symplectic ();
-  test_energy ();
-  test_kepler ();
-  test_reversible ();
+  scenario_symplectic ();
+  scenario_energy ();
+  scenario_kepler ();
+  scenario_reversible ();
   return tu_finish ("test_se_sv_geometry");
 }

@@ -1,25 +1,25 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* test_spvi_internal.c -- the SPVI stepper's static parts: its analytic
-   Newton matrix against central differences of its residual, and the
-   exactness of the predictor.  The stepper's source is included with its
-   exported table renamed, so this program has its own copy of the static
-   functions (and links with the library's as usual). */
-#define sym_step_spvi test_spvi_internal_copy
-#include "step_spvi.c"
-#undef sym_step_spvi
-
+/* test_spvi_internal.c -- the SPVI stepper's parts (methods/spvi/spvi.h):
+   its analytic Newton matrix against central differences of its
+   residual, the exactness of the predictor, the extrapolated and
+   borrowed node Jacobians, the Gauss transform. */
+#include "methods/spvi/spvi.h"
 #include "testutil.h"
 #include "test_spvi_systems.h"
 
+#include <string.h>
+
+#define T sym_step_spvi
+
 /* Set up core c for the step (t, h, yk) as spvi_step (its kept
-   evaluations counted from t; here t - c->t is exact) and core_solve do. */
+   evaluations counted from t; here t - c->t is exact) and spvi_solve do. */
 static void
-setup (spvi_core *c, sym_system *sys, double t, double h, const double *yk)
+setup (spvi_core *c, sym_eval *ev, double t, double h, const double *yk)
 {
-  core_move (c, t - c->t);
-  c->sys = sys;
+  spvi_core_move (c, t - c->t);
+  c->ev = ev;
   c->t = t;
   c->h = h;
   c->yk = yk;
@@ -29,14 +29,14 @@ setup (spvi_core *c, sym_system *sys, double t, double h, const double *yk)
 }
 
 static double
-matrix_vs_fd (int n, int m, sym_system *sys, const double *yk, double h,
+matrix_vs_fd (int n, int m, sym_eval *ev, const double *yk, double h,
               unsigned seed)
 {
   spvi_core c;
-  if (core_init (&c, sys->dim, n, m))
+  if (spvi_core_init (&c, ev->dim, n, m))
     return INFINITY;
-  setup (&c, sys, 0.1, h, yk);
-  const int N = c.N, d = sys->dim;
+  setup (&c, ev, 0.1, h, yk);
+  const int N = c.N, d = ev->dim;
   /* a point near a solution: small a_i, P near p_k, plus noise */
   srand (seed);
   for (int i = 0; i < N; i++)
@@ -49,7 +49,7 @@ matrix_vs_fd (int n, int m, sym_system *sys, const double *yk, double h,
   double *rm = malloc ((size_t) N * sizeof (double));
   double *x = malloc ((size_t) N * sizeof (double));
   double worst = INFINITY;
-  if (M && rp && rm && x && ! core_matrix (&c, c.x, M))
+  if (M && rp && rm && x && ! spvi_matrix (&c, c.x, M))
     {
       double mmax = 0.0;
       for (int i = 0; i < N * N; i++)
@@ -60,9 +60,9 @@ matrix_vs_fd (int n, int m, sym_system *sys, const double *yk, double h,
           double del = 1e-6 * fmax (1e-2, fabs (c.x[col]));
           memcpy (x, c.x, (size_t) N * sizeof (double));
           x[col] += del;
-          core_residual (&c, x, rp);
+          spvi_residual (&c, x, rp);
           x[col] -= 2 * del;
-          core_residual (&c, x, rm);
+          spvi_residual (&c, x, rm);
           for (int i = 0; i < N; i++)
             {
               double fd = (rp[i] - rm[i]) / (2 * del);
@@ -75,12 +75,12 @@ matrix_vs_fd (int n, int m, sym_system *sys, const double *yk, double h,
   free (rm);
   free (rp);
   free (M);
-  core_free (&c);
+  spvi_core_free (&c);
   return worst;
 }
 
 static void
-test_matrix (void)
+scenario_matrix (void)
 {
   static const int pairs[][2] = { { 2, 1 }, { 3, 2 }, { 4, 3 }, { 3, 3 },
                                   { 4, 2 }, { 5, 4 }, { 6, 4 }, { 2, 3 },
@@ -90,8 +90,8 @@ test_matrix (void)
   for (size_t p = 0; p < sizeof pairs / sizeof pairs[0]; p++)
     {
       int n = pairs[p][0], m = pairs[p][1];
-      sym_system s2 = ts_system (2, ts_ns2, ts_ns2_jac, NULL);
-      sym_system s1 = ts_system (1, ts_ns1, ts_ns1_jac, NULL);
+      sym_eval s2 = ts_eval (2, ts_ns2, ts_ns2_jac, NULL);
+      sym_eval s1 = ts_eval (1, ts_ns1, ts_ns1_jac, NULL);
       double e[3];
       e[0] = matrix_vs_fd (n, m, &s2, y2, 0.3, 1u + p);
       e[1] = matrix_vs_fd (n, m, &s2, y2, -0.2, 7u + p);
@@ -103,7 +103,7 @@ test_matrix (void)
           worst = fmax (worst, e[k]);
         }
       /* with finite-difference node Jacobians: close, not exact */
-      sym_system sf = ts_system (2, ts_ns2, NULL, NULL);
+      sym_eval sf = ts_eval (2, ts_ns2, NULL, NULL);
       double ef = matrix_vs_fd (n, m, &sf, y2, 0.3, 11u + p);
       CHECK (ef <= 1e-6, "(%d,%d) FD Jacobians: %.3g", n, m, ef);
     }
@@ -135,12 +135,14 @@ cubic_jac (double t, const double *y, double *df, void *user)
 }
 
 static void
-test_predictor_exact (void)
+scenario_predictor_exact (void)
 {
-  sym_system sys = ts_system (1, cubic_rhs, cubic_jac, NULL);
-  sym_method_opts o = ts_opts (4, 3);
+  sym_eval ev = ts_eval (1, cubic_rhs, cubic_jac, NULL);
+  sym_method_opts o;
+  sym_spvi_opts so;
+  ts_opts (&o, &so, 4, 3);
   int st;
-  spvi_state *s = test_spvi_internal_copy->alloc (&sys, &o, &st);
+  spvi_state *s = T->alloc (ev.dim, &o, &st);
   double y[2] = { 0.5, -1.0 }, yn[2];
   const double t0 = 0.3;
   double t = t0, worst_pred = 0.0, worst_exact = 0.0;
@@ -149,12 +151,11 @@ test_predictor_exact (void)
   const double hs[] = { 0.2, 0.2, 0.35, 0.1, 0.25 };
   for (int k = 0; k < 5; k++)
     {
-      st |= test_spvi_internal_copy->step (s, &sys, t, hs[k], t + hs[k], y, yn,
-                                           NULL);
+      st |= T->step (s, &ev, t, hs[k], t + hs[k], y, yn, NULL);
       if (k > 0)
         worst_pred = fmax (worst_pred, ts_maxdiff (s->lo.N, s->lo.x0,
                                                    s->lo.x));
-      test_spvi_internal_copy->accept (s);
+      T->accept (s);
       t += hs[k];
       memcpy (y, yn, sizeof y);
       /* exact: q = q0 + p0 (t-t0) + (t^3 - t0^3)/6 - t0^2 (t-t0)/2,
@@ -174,7 +175,7 @@ test_predictor_exact (void)
      after h grows 1.75 times */
   CHECK (worst_pred <= 1e-12, "predictor not exact: %.3g", worst_pred);
   CHECK (worst_exact <= 1e-14, "not exact: %.3g", worst_exact);
-  test_spvi_internal_copy->free (s);
+  T->free (s);
 }
 
 /* The extrapolated node Jacobians: exact (to round-off) when Df is a
@@ -218,16 +219,16 @@ tlin_jac_error (const spvi_core *c)
 }
 
 static void
-test_extrapolate (void)
+scenario_extrapolate (void)
 {
-  sym_system sys = ts_system (1, tlin_rhs, tlin_jac, NULL);
+  sym_eval ev = ts_eval (1, tlin_rhs, tlin_jac, NULL);
   const double yk[2] = { 0.4, -0.3 };
   double worst = 0.0;
   int ok = 1;
   for (int m = 1; m <= 4; m++)
     {
       spvi_core c;
-      if (core_init (&c, 1, m + 1, m))
+      if (spvi_core_init (&c, 1, m + 1, m))
         {
           ok = 0;
           continue;
@@ -237,74 +238,75 @@ test_extrapolate (void)
       /* evaluations at the steps from 0.5 and 0.75 (at least two sample
          times even for m = 1), then steps 1..6 steps after the latest
          (the last one too far) */
-      setup (&c, &sys, 0.5, h, yk);
-      core_matrix (&c, c.x, M);
-      setup (&c, &sys, 0.75, h, yk);
-      core_matrix (&c, c.x, M);
+      setup (&c, &ev, 0.5, h, yk);
+      spvi_matrix (&c, c.x, M);
+      setup (&c, &ev, 0.75, h, yk);
+      spvi_matrix (&c, c.x, M);
       ok &= c.nae == 2;
       for (int k = 1; k <= 6; k++)
         {
-          setup (&c, &sys, 0.75 + k * h, h, yk);
+          setup (&c, &ev, 0.75 + k * h, h, yk);
           c.nw.have_matrix = 1;
-          int done = core_extrapolate (&c, &sys);
-          ok &= done == (k <= SPVI_JX_STEPS);
+          int done = spvi_extrapolate (&c, &ev);
+          ok &= done == (k <= SYM_SPVI_JX_STEPS);
           if (! done)
             continue;
           worst = fmax (worst, tlin_jac_error (&c));
         }
-      /* a reset forgets them */
+      /* none kept: nothing to extrapolate from */
       c.nae = 0;
-      setup (&c, &sys, 1.0, h, yk);
-      ok &= core_extrapolate (&c, &sys) == 0;
+      setup (&c, &ev, 1.0, h, yk);
+      ok &= spvi_extrapolate (&c, &ev) == 0;
       free (M);
-      core_free (&c);
+      spvi_core_free (&c);
     }
   printf ("extrapolated node Jacobians, Df linear in t: max error %.2e\n",
           worst);
   CHECK (ok, "extrapolation done where it should not be, or not done");
-  /* round-off, amplified by at most SPVI_JX_LEBESGUE */
+  /* round-off, amplified by at most SYM_SPVI_JX_LEBESGUE */
   CHECK (worst < 1e-11, "extrapolated Jacobians off by %.3g", worst);
 }
 
 /* The companion's node Jacobians interpolated from the method's of the
-   same step (core_borrow): exact for Df linear in t (m >= 2 points), no
+   same step (spvi_borrow): exact for Df linear in t (m >= 2 points), no
    callback, and refused for another step or another h. */
 static void
-test_borrow (void)
+scenario_borrow (void)
 {
-  sym_system sys = ts_system (1, tlin_rhs, tlin_jac, NULL);
+  sym_eval ev = ts_eval (1, tlin_rhs, tlin_jac, NULL);
   const double yk[2] = { 0.4, -0.3 };
   double worst = 0.0;
   int ok = 1;
   for (int m = 2; m <= 4; m++)
     {
       spvi_core lo, hi;
-      if (core_init (&lo, 1, m + 1, m) || core_init (&hi, 1, m + 2, m + 1))
+      if (spvi_core_init (&lo, 1, m + 1, m)
+          || spvi_core_init (&hi, 1, m + 2, m + 1))
         {
           ok = 0;
           continue;
         }
       double *M = malloc ((size_t) lo.N * lo.N * sizeof (double));
       const double t = 0.5, h = 0.25;
-      setup (&lo, &sys, t, h, yk);
-      core_matrix (&lo, lo.x, M);
-      long njac = sys.cnt.njac;
-      setup (&hi, &sys, t, h, yk);
-      ok &= core_borrow (&hi, &lo, &sys) == 1 && hi.nw.have_matrix
-            && hi.nw.lu.factored && sys.cnt.njac == njac;
+      setup (&lo, &ev, t, h, yk);
+      spvi_matrix (&lo, lo.x, M);
+      long njac = ev.st.cnt.njac;
+      setup (&hi, &ev, t, h, yk);
+      ok &= spvi_borrow (&hi, &lo, &ev) == 1 && hi.nw.have_matrix
+            && hi.nw.lu.factored && ev.st.cnt.njac == njac;
       worst = fmax (worst, tlin_jac_error (&hi));
       /* not from another step (both cores move on, as in spvi_step), nor
          at another h */
       sym_newton_invalidate (&hi.nw);
-      setup (&lo, &sys, t + h, h, yk);
-      setup (&hi, &sys, t + h, h, yk);
-      ok &= core_borrow (&hi, &lo, &sys) == 0 && ! hi.nw.have_matrix;
-      setup (&lo, &sys, t, h, yk);
-      setup (&hi, &sys, t, 0.5 * h, yk);
-      ok &= core_borrow (&hi, &lo, &sys) == 0 && ! hi.nw.have_matrix;
+      setup (&lo, &ev, t + h, h, yk);
+      setup (&hi, &ev, t + h, h, yk);
+      ok &= spvi_borrow (&hi, &lo, &ev) == 0 && ! hi.nw.have_matrix;
+      setup (&lo, &ev, t, h, yk);
+      setup (&hi, &ev, t, 0.5 * h, yk);
+      ok &= spvi_borrow (&hi, &lo, &ev) == 0 && ! hi.nw.have_matrix;
       free (M);
-      core_free (&lo);
-      core_free (&hi);
+      spvi_core_free (&lo);
+      spvi_core_free (&hi);
     }
   printf ("companion's node Jacobians from the method's, Df linear in t: "
           "max error %.2e\n", worst);
@@ -314,16 +316,16 @@ test_borrow (void)
 
 /* The Gauss transform inverts the Legendre-Vandermonde matrix. */
 static void
-test_vinv (void)
+scenario_vinv (void)
 {
-  ts_user u = { 0 };
-  sym_system sys = ts_system (1, ts_pend, ts_pend_jac, &u);
   double worst = 0.0;
   for (int n = 2; n <= 12; n++)
     {
-      sym_method_opts o = ts_opts (n, n);
+      sym_method_opts o;
+      sym_spvi_opts so;
+      ts_opts (&o, &so, n, n);
       int st;
-      spvi_state *s = test_spvi_internal_copy->alloc (&sys, &o, &st);
+      spvi_state *s = T->alloc (1, &o, &st);
       double l[12], dl[12];
       for (int i = 0; i < n; i++)
         for (int k = 0; k < n; k++)
@@ -336,7 +338,7 @@ test_vinv (void)
               }
             worst = fmax (worst, fabs (v - (i == k)));
           }
-      test_spvi_internal_copy->free (s);
+      T->free (s);
     }
   CHECK (worst < 1e-13, "Vinv V - I: %.3g", worst);
 }
@@ -344,10 +346,10 @@ test_vinv (void)
 int
 main (void)
 {
-  test_matrix ();
-  test_predictor_exact ();
-  test_extrapolate ();
-  test_borrow ();
-  test_vinv ();
+  scenario_matrix ();
+  scenario_predictor_exact ();
+  scenario_extrapolate ();
+  scenario_borrow ();
+  scenario_vinv ();
   return tu_finish ("test_spvi_internal");
 }

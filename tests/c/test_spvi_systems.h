@@ -278,29 +278,51 @@ ts_system (int d, sym_rhs_fn rhs, sym_jac_fn jac, void *user)
   return s;
 }
 
-static inline sym_method_opts
-ts_opts (int n, int m)
+/* the same as the core evaluates it, for the stepper driven directly */
+static inline sym_eval
+ts_eval (int d, sym_rhs_fn rhs, sym_jac_fn jac, void *user)
 {
-  sym_method_opts o;
-  memset (&o, 0, sizeof (o));
-  o.q_dofs = n;
-  o.nodes = m;
-  return o;
+  sym_system s = ts_system (d, rhs, jac, user);
+  sym_eval ev;
+  sym_eval_init (&ev, &s);
+  return ev;
+}
+
+/* The options of the pair (n, m) (0: the defaults) into o, its own part
+   into so, which o->own points at */
+static inline void
+ts_opts (sym_method_opts *o, sym_spvi_opts *so, int n, int m)
+{
+  memset (o, 0, sizeof (*o));
+  memset (so, 0, sizeof (*so));
+  so->q_dofs = n;
+  so->nodes = m;
+  o->own = so;
+}
+
+/* Switch a stepper to the steps of an adaptive run with RelTol rtol and
+   AbsTol atol */
+static inline int
+ts_adaptive (const sym_stepper_type *type, void *state, double rtol,
+             double atol)
+{
+  const sym_tolerances tol = { rtol, &atol, 1, 0 };
+  return type->set_tolerances (state, &tol);
 }
 
 /* Fixed steps t = t0 + k h, k = 1..nsteps, from y (overwritten): step
    then accept, as the driver does.  Returns the first nonzero status. */
 static inline int
-ts_run_fixed (const sym_stepper_type *type, void *state, sym_system *sys,
+ts_run_fixed (const sym_stepper_type *type, void *state, sym_eval *ev,
               double t0, double h, long nsteps, double *y)
 {
   double yn[64];
-  int nn = 2 * sys->dim;
+  int nn = 2 * ev->dim;
   double t = t0;
   for (long k = 0; k < nsteps; k++)
     {
       double tn = t0 + h * (double) (k + 1);
-      int st = type->step (state, sys, t, h, tn, y, yn, NULL);
+      int st = type->step (state, ev, t, h, tn, y, yn, NULL);
       if (st)
         return st;
       type->accept (state);

@@ -4,7 +4,7 @@
 /* control.c -- error norms and step-size choice for the adaptive driver,
    scaled exactly as Octave's ode45 scales them, so that RelTol and AbsTol
    mean the same thing to a user of either. */
-#include "control.h"
+#include "driver.h"
 
 #include <float.h>
 #include <math.h>
@@ -13,10 +13,11 @@
    with NormControl: |e| / max(atol, rtol * max(|y|, |yold|)) in the 2-norm. */
 double
 sym_error_norm (int n, const double *e, const double *yold,
-                const double *ynew, double rtol, const double *atol,
-                int atol_len, int norm_control)
+                const double *ynew, const sym_tolerances *tol)
 {
-  if (norm_control)
+  const double rtol = tol->rtol, *atol = tol->atol;
+  const int atol_len = tol->atol_len;
+  if (tol->norm_control)
     {
       double ne = 0, ny = 0, nyo = 0;
       for (int i = 0; i < n; i++)
@@ -40,51 +41,24 @@ sym_error_norm (int n, const double *e, const double *yold,
   return m;
 }
 
-double
-sym_error_floor (int n, const double *y, double rtol, double atol)
-{
-  double w = INFINITY;
-  for (int i = 0; i < n; i++)
-    w = fmin (w, fmax (atol, rtol * fabs (y[i])));
-  return w;
-}
-
 /* The factor by which to multiply h after a step with error norm err, for
    an estimate of order q+1 (err = O(h^(q+1))). */
 double
 sym_step_factor (double err, int q, double facmin, double facmax)
 {
-  const double safety = 0.9;
   if (err <= 0 || ! isfinite (err))
     return err <= 0 ? facmax : facmin;
-  double fac = safety * pow (err, -1.0 / (q + 1));
+  double fac = SYM_CTRL_SAFETY * pow (err, -1.0 / (q + 1));
   return fmin (facmax, fmax (facmin, fac));
 }
 
 /* Predictive control: the error of a step grows with h as h^(q+1), but
-   also along the solution; where it grows from step to step (Kepler's
-   orbit falling towards pericentre, where a high-order method's large
-   steps see the error change several-fold from one step to the next) the
-   standard factor, which assumes the next step's error constant at the
-   same h, proposes a step that fails, and the run alternates failed and
-   accepted steps.  The predicted factor
-     fac * (h / h_acc) * (err_acc / err)^(1/(q+1))
-   extrapolates the trend of the last two accepted steps; the smaller of
-   the two is taken, so that the prediction only ever shortens a step, and
-   err_acc is floored (the driver keeps max(err, 1e-2)) so that round-off
-   level errors do not make a trend (as in implicit Runge-Kutta codes).
-   Measured on 10 periods of Kepler e = 0.6, odeSPVI (4,3), RelTol =
-   AbsTol = 1e-4..1e-12 (test_adaptive_kepler in tests/c/test_spvi.c
-   prints them; the calls since fell further, see core_borrow in
-   step_spvi.c): failed/accepted steps 45/131 85/220 137/400 58/734
-   0/1405 -> 24/133 17/222 15/404 2/754 0/1433, rhs + jac calls 4765 6876
-   10763 14356 24398 -> 3967 5142 8173 13506 25003, end-point errors
-   1.2e-2 8.8e-5 3.2e-7 3.0e-9 8.5e-12 -> 8.7e-3 9.6e-5 3.0e-7 9.7e-10
-   2.7e-12.  On e = 0.9 and the pendulum (bench/adaptive_runs.m, against
-   the same script before this control) likewise: calls -2..-30% down to
-   RelTol 1e-10, +1..2% at 1e-12, where hardly a step failed anyway;
-   odeSE and odeSV, whose low orders see little change of the error from
-   one step to the next, -35..+7%. */
+   also along the solution (Kepler's orbit falling towards pericentre);
+   where it grows from step to step, the standard factor, which assumes
+   the next error constant at the same h, proposes steps that fail.  The
+   predicted factor fac (h / h_acc) (err_acc / err)^(1/(q+1)) extrapolates
+   the trend of the last two accepted steps; the smaller of the two is
+   taken, so that the prediction only ever shortens a step. */
 double
 sym_step_factor_pred (double fac, double err, int q, double h,
                       double h_acc, double err_acc, double facmin)
@@ -99,12 +73,13 @@ sym_step_factor_pred (double fac, double err, int q, double h,
    h*|f0| and h^(q+1) * |f'| against the tolerance.  Costs one rhs call
    (f0 is given). */
 int
-sym_initial_step (sym_system *sys, double t0, const double *y0,
-                  const double *f0, double dir, int q, double rtol,
-                  const double *atol, int atol_len, double hmax,
-                  double *work, double *h_out)
+sym_initial_step (sym_eval *ev, double t0, const double *y0,
+                  const double *f0, double dir, int q,
+                  const sym_tolerances *tol, double hmax, double *work,
+                  double *h_out)
 {
-  int n = 2 * sys->dim;
+  const int n = 2 * ev->dim, atol_len = tol->atol_len;
+  const double rtol = tol->rtol, *atol = tol->atol;
   double d0 = 0, d1 = 0;
   for (int i = 0; i < n; i++)
     {
@@ -117,7 +92,7 @@ sym_initial_step (sym_system *sys, double t0, const double *y0,
   double *y1 = work, *f1 = work + n;
   for (int i = 0; i < n; i++)
     y1[i] = y0[i] + dir * h0 * f0[i];
-  int st = sym_rhs (sys, t0 + dir * h0, y1, f1);
+  int st = sym_rhs (ev, t0 + dir * h0, y1, f1);
   if (st)
     {
       /* a failing probe: start small and let the driver's control work */

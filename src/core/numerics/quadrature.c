@@ -10,9 +10,8 @@
    gives them to a few ulp times a modest factor, so each node is then
    polished by Newton's method on P_m (three-term recurrence) and the
    weights are recomputed from w = 2 / ((1 - z^2) P_m'(z)^2); finally the
-   rule is made exactly symmetric.  Measured against 40-digit values:
-   nodes within 1 ulp, weights within 1e-16 relative, m <= 60. */
-#include "sym.h"
+   rule is made exactly symmetric. */
+#include "numerics.h"
 
 #include <math.h>
 

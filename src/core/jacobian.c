@@ -1,0 +1,348 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* jacobian.c -- Df for Newton's matrices: the user's (Jacobian, or the
+   Hessian as FCN's second output), checked once on its first use and
+   again after a Newton failure, or forward differences of f. */
+#include "calls.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+/* The sizes of y's components at the state y that scale its difference
+   steps (see sym.h): max(|y_i|, ytyp_i), and at least SYM_FD_FLOOR times
+   the largest of them in y_i's half (q or p); in a half that is all zero,
+   the other half's largest, or 1 if both are.  Without ytyp (a stepper
+   driven directly) a component's own size says nothing when it passes
+   through zero, so all of a half take its largest size. */
+static void
+fd_sizes (const sym_eval *ev, const double *y, double *size)
+{
+  const int d = ev->dim;
+  double big[2], low[2];
+  for (int i = 0; i < 2 * d; i++)
+    {
+      size[i] = fabs (y[i]);
+      if (ev->ytyp)
+        size[i] = fmax (size[i], ev->ytyp[i]);
+    }
+  for (int half = 0; half < 2; half++)
+    {
+      big[half] = 0.0;
+      for (int i = half * d; i < (half + 1) * d; i++)
+        big[half] = fmax (big[half], size[i]);
+    }
+  const double fl = ev->ytyp ? SYM_FD_FLOOR : 1.0;
+  for (int half = 0; half < 2; half++)
+    low[half] = big[half] > 0 ? fl * big[half]
+                : big[1 - half] > 0 ? big[1 - half] : 1.0;
+  for (int i = 0; i < 2 * d; i++)
+    size[i] = fmax (size[i], low[i >= d]);
+}
+
+/* Forward differences at k states (columns of y, times t, f0 their f):
+   df holds k n-by-n Jacobians.  The step of column c balances truncation
+   (~ delta) against round-off (~ eps / delta).  With a batch callback all
+   k n perturbed states go in one call, else one rhs call each; the
+   results are the same.  With fout instead of f0, the k states' own f are
+   evaluated too, into fout: with a batch callback in the same call as the
+   perturbed states when all fit in one.  Counted in nfd (and nrhs). */
+static int
+jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
+             const double *f0, double *fout, double *df)
+{
+  const int n = 2 * ev->dim;
+  const int batch = ev->rhs_batch != NULL;
+  const size_t cols = (size_t) k * n;
+  /* columns evaluated per call: all of them with a batch callback, up to
+     SYM_FD_BATCH_DOUBLES values of y in one call (a chain of d = 300 at 3
+     nodes has 1800 columns of 600) */
+  size_t ncw = batch ? cols : 1;
+  if (ncw * n > SYM_FD_BATCH_DOUBLES)
+    ncw = SYM_FD_BATCH_DOUBLES / n > 0 ? SYM_FD_BATCH_DOUBLES / n : 1;
+  /* the states' own f: leading columns of the one call, or a call first */
+  const size_t nb = fout && batch && (cols + k) * n <= SYM_FD_BATCH_DOUBLES
+                    ? (size_t) k : 0;
+  long before = ev->st.cnt.nrhs;
+  if (fout && ! nb)
+    {
+      int st = sym_rhs_many (ev, k, t, y, fout);
+      if (st)
+        return st;
+      before = ev->st.cnt.nrhs;
+    }
+  if (fout)
+    f0 = fout;
+  double *w = sym_malloc ((2 * (ncw + nb) * n + 3 * cols + nb + n)
+                          * sizeof (double));
+  if (! w)
+    return SYM_ENOMEM;
+  double *yp = w, *fp = w + (ncw + nb) * n, *del = w + 2 * (ncw + nb) * n;
+  double *tp = del + cols, *yv = tp + cols + nb;   /* yv: perturbed values */
+  const double sq = sqrt (DBL_EPSILON);
+  for (size_t j = 0; j < nb; j++)
+    {
+      memcpy (yp + j * n, y + j * n, (size_t) n * sizeof (double));
+      tp[j] = t[j];
+    }
+  double *size = yv + cols;   /* n: the sizes of one state's components */
+  int st = SYM_SUCCESS;
+  /* forward steps; if f is NaN or Inf at a stepped state (a state within
+     a step of the edge of f's domain), all of them once more backwards */
+  for (int pass = 0; pass < 2 && (pass == 0 || st == SYM_NONFINITE);
+       pass++)
+    {
+      st = SYM_SUCCESS;
+      for (size_t c = 0; c < cols; c++)
+        {
+          const double *yj = y + (c / n) * n;
+          int i = (int) (c % n);
+          if (i == 0)
+            fd_sizes (ev, yj, size);
+          double d = (pass ? -sq : sq) * size[i];
+          volatile double yi = yj[i] + d;   /* exact representable step */
+          yv[c] = yi;
+          del[c] = yi - yj[i];
+          tp[nb + c] = t[c / n];
+        }
+      for (size_t c0 = 0; c0 < cols && ! st; c0 += ncw)
+        {
+          size_t c1 = c0 + ncw < cols ? c0 + ncw : cols;
+          size_t lead = c0 == 0 ? nb : 0;   /* the states themselves, first */
+          double *ypc = yp + lead * n, *fpc = fp + lead * n;
+          for (size_t c = c0; c < c1; c++)
+            {
+              double *col = ypc + (c - c0) * n;
+              memcpy (col, y + (c / n) * n, (size_t) n * sizeof (double));
+              col[c % n] = yv[c];
+            }
+          st = batch ? sym_rhs_many (ev, (int) (c1 - c0 + lead),
+                                     tp + nb + c0 - lead, yp, fp)
+                     : sym_rhs (ev, tp[nb + c0], yp, fp);
+          if (! st && lead)
+            memcpy (fout, fp, lead * n * sizeof (double));
+          for (size_t c = c0; c < c1 && ! st; c++)
+            {
+              const double *fc = fpc + (c - c0) * n, *f0j = f0 + (c / n) * n;
+              double *dfc = df + (c / n) * n * n + (c % n) * n;
+              for (int i = 0; i < n; i++)
+                dfc[i] = (fc[i] - f0j[i]) / del[c];
+            }
+        }
+    }
+  ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
+  sym_free (w);
+  return st;
+}
+
+static int
+jac_fd (sym_eval *ev, double t, const double *y, const double *f0,
+        double *df)
+{
+  if (f0)
+    return jac_fd_many (ev, 1, &t, y, f0, NULL, df);
+  int n = 2 * ev->dim;
+  double *fb = sym_malloc ((size_t) n * sizeof (double));
+  if (! fb)
+    return SYM_ENOMEM;
+  long before = ev->st.cnt.nrhs;
+  int st = sym_rhs (ev, t, y, fb);
+  ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
+  if (! st)
+    st = jac_fd_many (ev, 1, &t, y, fb, NULL, df);
+  sym_free (fb);
+  return st;
+}
+
+/* The first Df a run gets from the user's jac or rhs_jac (sym.h,
+   SYM_JAC_GROSS), df at (t, y), with f0 = f(t, y) or NULL: compared along
+   one direction with a forward difference of rhs, and dropped for finite
+   differences (into df) when it is grossly too large.  A failed call of rhs returns its status,
+   as in the finite differences, and leaves the probe to be made again. */
+static int
+jac_probe (sym_eval *ev, double t, const double *y, const double *f0,
+           double *df)
+{
+  const int n = 2 * ev->dim;
+  ev->jac_probed = 1;
+  double *w = sym_malloc (4 * (size_t) n * sizeof (double));
+  if (! w)
+    return SYM_ENOMEM;
+  double *fb = w, *yp = w + n, *fp = w + 2 * n, *size = w + 3 * n;
+  long before = ev->st.cnt.nrhs;
+  int st = SYM_SUCCESS;
+  if (! f0)
+    {
+      st = sym_rhs (ev, t, y, fb);
+      f0 = fb;
+    }
+  /* a direction with every component of its own size (as the finite
+     differences step them) and varied weights and signs, so that no
+     structure of Df hides a wrong part of it */
+  fd_sizes (ev, y, size);
+  const double sq = sqrt (DBL_EPSILON);
+  for (int i = 0; i < n; i++)
+    {
+      double wt = (i & 1 ? -1.0 : 1.0) * (0.5 + 0.05 * ((i * 37) % 11));
+      volatile double yi = y[i] + sq * size[i] * wt;   /* exact step */
+      yp[i] = yi;
+    }
+  /* f NaN or Inf at the stepped state (y within a step of the edge of f's
+     domain): the opposite direction; NaN there too, no probe (Df is
+     kept, as the finite differences could not be made either) */
+  if (! st && (st = sym_rhs (ev, t, yp, fp)) == SYM_NONFINITE)
+    {
+      for (int i = 0; i < n; i++)
+        {
+          volatile double yi = y[i] - (yp[i] - y[i]);
+          yp[i] = yi;
+        }
+      st = sym_rhs (ev, t, yp, fp);
+      if (st == SYM_NONFINITE)
+        {
+          ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
+          sym_free (w);
+          return SYM_SUCCESS;
+        }
+    }
+  ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
+  if (st)
+    {
+      ev->jac_probed = 0;
+      sym_free (w);
+      return st;
+    }
+  double dif = 0.0, ref = 0.0, fbig = 0.0;
+  for (int i = 0; i < n; i++)
+    {
+      double pred = 0.0;
+      for (int j = 0; j < n; j++)
+        pred += df[i + (size_t) j * n] * (yp[j] - y[j]);
+      double del = fp[i] - f0[i];
+      dif = fmax (dif, fabs (del - pred));
+      ref = fmax (ref, fabs (del));
+      fbig = fmax (fbig, fmax (fabs (f0[i]), fabs (fp[i])));
+    }
+  /* the difference's own round-off: f's rounding, a few ulps of f */
+  ref += SYM_JAC_NOISE * DBL_EPSILON * fbig;
+  if (dif > SYM_JAC_GROSS * ref)
+    {
+      ev->jac = NULL;
+      ev->rhs_jac = NULL;
+      ev->st.jac_dropped = 1;
+      ev->st.jac_dropped_t = t;
+      st = jac_fd (ev, t, y, f0, df);
+    }
+  sym_free (w);
+  return st;
+}
+
+int
+sym_jac (sym_eval *ev, double t, const double *y, const double *f0,
+         double *df)
+{
+  if (! ev->jac)
+    return jac_fd (ev, t, y, f0, df);
+  int n = 2 * ev->dim;
+  ev->st.cnt.njac++;
+  int st = sym_callback_status (ev, t, ev->jac (t, y, df, ev->user));
+  if (st)
+    return st;
+  if (! sym_all_finite ((size_t) n * (size_t) n, df))
+    return sym_nonfinite_df_at (ev, t);
+  return ev->jac_probed ? SYM_SUCCESS : jac_probe (ev, t, y, f0, df);
+}
+
+int
+sym_rhs_jac (sym_eval *ev, double t, const double *y, double *dy,
+             double *df)
+{
+  if (! ev->rhs_jac)
+    {
+      int st = sym_rhs (ev, t, y, dy);
+      return st ? st : sym_jac (ev, t, y, dy, df);
+    }
+  int n = 2 * ev->dim;
+  ev->st.cnt.njac++;
+  ev->st.rhs_jac_used = 1;
+  int st = sym_callback_status (ev, t, ev->rhs_jac (t, y, dy, df, ev->user));
+  if (st)
+    return st;
+  if (! sym_all_finite (n, dy))
+    return sym_nonfinite_at (ev, t);
+  if (! sym_all_finite ((size_t) n * (size_t) n, df))
+    return sym_nonfinite_df_at (ev, t);
+  return ev->jac_probed ? SYM_SUCCESS : jac_probe (ev, t, y, dy, df);
+}
+
+int
+sym_jac_many (sym_eval *ev, int k, const double *t, const double *y,
+              const double *f0, double *df)
+{
+  const size_t n = 2 * (size_t) ev->dim;
+  if (! ev->jac)
+    return jac_fd_many (ev, k, t, y, f0, NULL, df);
+  for (int j = 0; j < k; j++)
+    {
+      int st = sym_jac (ev, t[j], y + j * n, NULL, df + j * n * n);
+      if (st)
+        return st;
+    }
+  return SYM_SUCCESS;
+}
+
+int
+sym_rhs_jac_many (sym_eval *ev, int k, const double *t, const double *y,
+                  double *f, double *df)
+{
+  if (! ev->jac)
+    return jac_fd_many (ev, k, t, y, NULL, f, df);
+  int st = sym_rhs_many (ev, k, t, y, f);
+  return st ? st : sym_jac_many (ev, k, t, y, f, df);
+}
+
+int
+sym_jac_check (sym_eval *ev, double t, const double *y, int *dropped)
+{
+  const size_t n = 2 * (size_t) ev->dim;
+  *dropped = 0;
+  if (! ev->jac && ! ev->rhs_jac)
+    return SYM_SUCCESS;
+  double *w = sym_malloc ((2 * n * n + n) * sizeof (double));
+  if (! w)
+    return SYM_ENOMEM;
+  double *du = w, *dfd = w + n * n, *f = w + 2 * n * n;
+  sym_jac_fn jac = ev->jac;
+  sym_rhs_jac_fn rhs_jac = ev->rhs_jac;
+  int st = rhs_jac ? sym_rhs_jac (ev, t, y, f, du)
+                   : sym_jac (ev, t, y, NULL, du);
+  /* a NaN or Inf in Df alone (f finite) */
+  int bad_du = st == SYM_NONFINITE && ev->st.fail_df;
+  if (! st || bad_du)
+    {
+      /* f(t, y) came with the Hessian, else jac_fd evaluates it */
+      ev->jac = NULL;
+      ev->rhs_jac = NULL;
+      st = jac_fd (ev, t, y, rhs_jac ? f : NULL, dfd);
+      double big = 0.0, dif = 0.0;
+      for (size_t i = 0; ! st && ! bad_du && i < n * n; i++)
+        {
+          big = fmax (big, fmax (fabs (du[i]), fabs (dfd[i])));
+          dif = fmax (dif, fabs (du[i] - dfd[i]));
+        }
+      *dropped = ! st && (bad_du || dif > SYM_JAC_AGREE * big);
+      if (*dropped)
+        {
+          ev->st.jac_dropped = 1;
+          ev->st.jac_dropped_t = t;
+        }
+      else
+        {
+          ev->jac = jac;
+          ev->rhs_jac = rhs_jac;
+        }
+    }
+  sym_free (w);
+  return st;
+}

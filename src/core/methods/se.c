@@ -1,0 +1,131 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* se.c -- symplectic Euler, variant "p implicit, q explicit" (order 1).
+
+   y = [q; p], q, p in R^d, f(t, y) = [f_q; f_p] = [dH/dp; -dH/dq + F].
+   One step from (t_k, q_k, p_k) by h (h < 0 runs backwards):
+
+     p_{k+1} = p_k + h f_p(t_k, q_k, p_{k+1})      implicit in p_{k+1}
+     q_{k+1} = q_k + h f_q(t_k, q_k, p_{k+1})      explicit
+
+   For F = 0 this is the symplectic Euler method; with the forcing F in f_p
+   it is the discrete Lagrange-d'Alembert (forced) variational integrator.
+
+   The implicit kick is sym_kick_solve (implicit.c, shared with
+   Stormer-Verlet's half kick): simplified Newton on the d unknowns P,
+     G(P) = P - p_k - h f_p(t_k, q_k, P),   G'(P) ~ I - h A_pp,
+   started from the history of P over an explicit start, stopped at
+   NewtonTol relative to max(|p_k|, |P0 - p_k|) (SYM_FIXED_TOL_KEPT of it
+   on fixed steps), with its matrix kept across steps while it pays.
+   q_{k+1} needs f_q at the final P: the solve leaves it in the f cache.
+
+   Separable H = T(p) + V(q): f_p does not depend on p and f_q not on q,
+   so the step is explicit: f(t_k, [q_k; p_k]) gives p_{k+1}, f(t_k,
+   [q_k; p_{k+1}]) gives q_{k+1}.  Two calls a step.
+
+   Error estimate: err = y_{k+1} - y_k - (h/2) (f(t_k, y_k) + f(t_{k+1},
+   y_{k+1})), the difference to the trapezoidal rule through the step
+   points: O(h^2) (order 1).  f at the end of an accepted step is f at the
+   start of the next (FSAL): one call a step.
+
+   Dense output: the cubic Hermite interpolant through the step's ends
+   when both f are known (adaptive steps, or dense output wanted), else
+   linear. */
+#include "onestep.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+  sym_onestep o;         /* first: accept and dense (onestep.h) */
+  double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
+} se_state;
+
+static void *
+se_alloc (int dim, const sym_method_opts *opts, int *status)
+{
+  int dummy;
+  if (! status)
+    status = &dummy;
+  se_state *s = sym_onestep_new (dim, 1, sizeof (se_state), opts, status);
+  if (! s)
+    return NULL;
+  const int d = dim, n = 2 * d;
+  /* records, f cache, and x, scale, rv: 3d; the separable step is
+     explicit: no Df and no Newton state (O(d^2) memory) */
+  const int implicit = ! s->o.separable;
+  size_t len = sym_recs_len (n, 0) + sym_fcache_len (d, implicit)
+               + 3 * (size_t) d + (implicit ? sym_pred_len (d) : 0);
+  s->o.block = sym_calloc (len, sizeof (double));
+  if (! s->o.block
+      || (implicit && sym_onestep_implicit (&s->o, 1, d, opts)))
+    {
+      sym_onestep_free (s);
+      *status = SYM_ENOMEM;
+      return NULL;
+    }
+  double *w = s->o.block;
+  sym_recs_place (&s->o.r, n, 0, w);
+  w += sym_recs_len (n, 0);
+  sym_fcache_place (&s->o.fc, d, implicit, w);
+  w += sym_fcache_len (d, implicit);
+  s->x = w; w += d;
+  s->scale = w; w += d;
+  s->rv = w; w += d;
+  if (implicit)
+    sym_pred_place (&s->o.pr[0], d, w);
+  *status = SYM_SUCCESS;
+  return s;
+}
+
+static int
+se_step (void *state, sym_eval *ev, double t, double h, double tend,
+         const double *y, double *ynext, double *yerr)
+{
+  se_state *s = state;
+  int st, cont;
+  if ((st = sym_onestep_begin (&s->o, ev, t, h, tend, y, ynext, &cont)))
+    return st;
+  const int d = s->o.d;
+  sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
+  const double *q0 = tr->y0, *p0 = tr->y0 + d;
+  double *q1 = tr->y1, *p1 = tr->y1 + d;
+
+  if (s->o.separable)
+    {
+      if ((st = sym_recs_f0 (&s->o.r, ev)))
+        return st;
+      for (int i = 0; i < d; i++)
+        p1[i] = p0[i] + h * tr->f0[d + i];
+      st = sym_fcache_f (&s->o.fc, ev, t, q0, p1);
+      if (st)
+        return st;
+      /* f_p at (t, q0) with p0 and with p1: the same if H is separable */
+      sym_sep_check (ev, t, d, tr->f0 + d, s->o.fc.fw + d);
+      for (int i = 0; i < d; i++)
+        q1[i] = q0[i] + h * s->o.fc.fw[i];
+    }
+  else
+    {
+      sym_kick kick = { d, &s->o.fc, &s->o.k[0], ev, t, h, h, tr->y0,
+                        &s->o.pr[0] };
+      if ((st = sym_kick_solve (&kick, &s->o.r, cont, cu->y0 + d, s->x,
+                                s->scale, s->rv)))
+        return st;
+      /* the cache holds f at [q_k; P] */
+      memcpy (p1, s->x, (size_t) d * sizeof (double));
+      for (int i = 0; i < d; i++)
+        q1[i] = q0[i] + h * s->o.fc.fw[i];
+    }
+  return sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext);
+}
+
+static const sym_stepper_type se_type = {
+  "se", se_alloc, sym_onestep_order, sym_onestep_set_tolerances,
+  se_step, sym_onestep_accept, sym_onestep_dense,
+  sym_onestep_dense_samples, sym_onestep_free
+};
+
+const sym_stepper_type *const sym_step_se = &se_type;

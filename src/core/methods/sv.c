@@ -1,0 +1,268 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* sv.c -- Stoermer-Verlet (order 2), general H.
+
+   y = [q; p], q, p in R^d, f(t, y) = [f_q; f_p] = [dH/dp; -dH/dq + F].
+   One step from (t_k, q_k, p_k) by h (h < 0 runs backwards), t_{k+1} =
+   t_k + h:
+
+     p_{k+1/2} = p_k + (h/2) f_p(t_k, q_k, p_{k+1/2})                 (1)
+     q_{k+1}   = q_k + (h/2) [f_q(t_k, q_k, p_{k+1/2})
+                              + f_q(t_{k+1}, q_{k+1}, p_{k+1/2})]       (2)
+     p_{k+1}   = p_{k+1/2} + (h/2) f_p(t_{k+1}, q_{k+1}, p_{k+1/2})     (3)
+
+   (1) and (2) are implicit (d unknowns each), (3) is explicit.  The method
+   is symplectic and symmetric (the step by -h from t_{k+1} undoes it).
+
+   Implicit solves: simplified Newton, one kept state per equation,
+     (1) the kick of symplectic Euler with h/2 (sym_kick_solve),
+     (2) G(Q) = Q - q_k - (h/2) [f_q(t_k, q_k, P) + f_q(t_{k+1}, Q, P)],
+         G' ~ I - (h/2) A_qq,
+   each started from the history of its unknown over an explicit start
+   (Q0 = q_k + h f_q(t_k, q_k, P)), stopped as in se.c.  The f values used
+   after each solve are those at the converged unknown (left in the f
+   cache).
+
+   Separable H = T(p) + V(q): explicit (leapfrog).  With f_p(q_k) from
+   the last step (FSAL) or from f(t_k, y_k) at a fresh start:
+     p_{k+1/2} = p_k + (h/2) f_p(q_k)
+     A = f(t_k + h/2, [q_k; p_{k+1/2}]) -> q_{k+1} = q_k + h f_q(p_{k+1/2})
+     B = f(t_{k+1}, [q_{k+1}; p_{k+1/2}]) -> p_{k+1} = p_{k+1/2}
+                                              + (h/2) f_p(q_{k+1})
+   Two calls a step (plus one at a fresh start); A at the midpoint time
+   keeps the step symmetric for a T(t, p).
+
+   Error estimate, of the local error y_{k+1} - y(t_{k+1}):
+     err = y_{k+1} - y_k - (h/2) (f(t_k, y_k) + f(t_{k+1}, y_{k+1}))
+           + (h^3/12) y''',
+   the difference to the trapezoidal rule plus the rule's own leading
+   error (for a separable H the first part vanishes in p: the p-update is
+   the trapezoidal rule).  O(h^3) (order 2), componentwise.  y''' = f''
+   is the second divided difference of f through the last step's start,
+   t_k and t_{k+1} when the steps continue one another, else through t_k,
+   t_k + h/2 and t_{k+1} with f at the cubic Hermite midpoint (one more
+   call).
+
+   Dense output: the cubic Hermite interpolant through the step's ends
+   when both f are known, else linear. */
+#include "onestep.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+/* Each step record also keeps (aux) p_{k+1/2} and f_p(t_{k+1}, q_{k+1},
+   p_{k+1/2}), d values each. */
+#define PH(rec) ((rec)->aux)
+#define FPE(rec, d) ((rec)->aux + (d))
+
+typedef struct {
+  sym_onestep o;         /* first: accept and dense (onestep.h) */
+  double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
+  double *fqa;           /* d: f_q(t_k, q_k, p_{k+1/2}) */
+  double *ym;            /* n: the estimate's midpoint at a fresh start */
+  /* the step being solved (for the Newton callbacks) */
+  sym_eval *ev;
+  double tk, hk;
+  const double *yk;
+  const double *pk;      /* (2): p_{k+1/2} */
+} sv_state;
+
+/* (2): G(Q) = Q - q_k - (h/2) [f_q(t_k, q_k, P) + f_q(t_{k+1}, Q, P)] */
+static int
+res_q (void *ctx, const double *x, double *r)
+{
+  sv_state *s = ctx;
+  const int d = s->o.d;
+  int st = sym_fcache_f (&s->o.fc, s->ev, s->tk + s->hk, x, s->pk);
+  if (st)
+    return st;
+  const double hh = 0.5 * s->hk;
+  for (int i = 0; i < d; i++)
+    r[i] = x[i] - s->yk[i] - hh * s->fqa[i] - hh * s->o.fc.fw[i];
+  return SYM_SUCCESS;
+}
+
+static int
+mat_q (void *ctx, const double *x, double *a)
+{
+  sv_state *s = ctx;
+  const int d = s->o.d, n = s->o.n;
+  int st = sym_fcache_jac (&s->o.fc, s->ev, s->tk + s->hk, x, s->pk);
+  if (st)
+    return st;
+  const double hh = 0.5 * s->hk;
+  for (int j = 0; j < d; j++)
+    for (int i = 0; i < d; i++)
+      a[i + (size_t) j * d] = (i == j ? 1.0 : 0.0)
+        - hh * s->o.fc.jw[i + (size_t) j * n];
+  sym_kept_built (&s->o.k[1], s->hk);
+  return SYM_SUCCESS;
+}
+
+static void *
+sv_alloc (int dim, const sym_method_opts *opts, int *status)
+{
+  int dummy;
+  if (! status)
+    status = &dummy;
+  sv_state *s = sym_onestep_new (dim, 2, sizeof (sv_state), opts, status);
+  if (! s)
+    return NULL;
+  const int d = dim, n = 2 * d;
+  /* records (aux: 2d), f cache, and x, scale, rv, fqa: 4d, ym: n; the
+     separable step is explicit: no Df and no Newton state (O(d^2)) */
+  const int implicit = ! s->o.separable;
+  size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d, implicit)
+               + 4 * (size_t) d + (size_t) n
+               + (implicit ? 2 * sym_pred_len (d) : 0);
+  s->o.block = sym_calloc (len, sizeof (double));
+  if (! s->o.block
+      || (implicit && sym_onestep_implicit (&s->o, 2, d, opts)))
+    {
+      sym_onestep_free (s);
+      *status = SYM_ENOMEM;
+      return NULL;
+    }
+  double *w = s->o.block;
+  sym_recs_place (&s->o.r, n, 2 * d, w);
+  w += sym_recs_len (n, 2 * d);
+  sym_fcache_place (&s->o.fc, d, implicit, w);
+  w += sym_fcache_len (d, implicit);
+  s->x = w; w += d;
+  s->scale = w; w += d;
+  s->rv = w; w += d;
+  s->fqa = w; w += d;
+  s->ym = w; w += n;
+  if (implicit)
+    {
+      sym_pred_place (&s->o.pr[0], d, w);
+      sym_pred_place (&s->o.pr[1], d, w + sym_pred_len (d));
+    }
+  *status = SYM_SUCCESS;
+  return s;
+}
+
+/* yerr += (h^3/12) y''', the trapezoidal rule's local error (see the top):
+   f'' from the last accepted step's start when it ends where the trial
+   starts (cont), else from f at the cubic Hermite midpoint (one call) */
+static int
+sv_trap_error (sv_state *s, sym_eval *ev, int cont, double *yerr)
+{
+  const sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
+  const int n = s->o.n;
+  const double h = tr->h;
+  if (cont && cu->have_f0 && cu->h * h > 0.0)
+    {
+      const double hp = cu->h, c = h * h * h / (6.0 * (h + hp));
+      for (int i = 0; i < n; i++)
+        yerr[i] += c * ((tr->f1[i] - tr->f0[i]) / h
+                        - (tr->f0[i] - cu->f0[i]) / hp);
+      return SYM_SUCCESS;
+    }
+  double *ym = s->ym;
+  sym_rec_hermite (tr, n, 0.5, ym);
+  int st = sym_fcache_f (&s->o.fc, ev, tr->t + 0.5 * h, ym, ym + s->o.d);
+  if (st)
+    return st;
+  const double *fm = s->o.fc.fw;
+  for (int i = 0; i < n; i++)
+    yerr[i] += (h / 3.0) * (tr->f0[i] - 2.0 * fm[i] + tr->f1[i]);
+  return SYM_SUCCESS;
+}
+
+static int
+sv_step (void *state, sym_eval *ev, double t, double h, double tend,
+         const double *y, double *ynext, double *yerr)
+{
+  sv_state *s = state;
+  int st, cont;
+  if ((st = sym_onestep_begin (&s->o, ev, t, h, tend, y, ynext, &cont)))
+    return st;
+  const int d = s->o.d;
+  sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
+  const double *q0 = tr->y0, *p0 = tr->y0 + d;
+  double *q1 = tr->y1, *p1 = tr->y1 + d, *ph = PH (tr), *fpe = FPE (tr, d);
+  const double hh = 0.5 * h;
+  s->ev = ev;
+  s->tk = t;
+  s->hk = h;
+  s->yk = tr->y0;
+
+  if (s->o.separable)
+    {
+      const double *fp;
+      if (cont)
+        fp = FPE (cu, d);
+      else
+        {
+          if ((st = sym_recs_f0 (&s->o.r, ev)))
+            return st;
+          fp = tr->f0 + d;
+        }
+      for (int i = 0; i < d; i++)
+        ph[i] = p0[i] + hh * fp[i];
+      st = sym_fcache_f (&s->o.fc, ev, t + hh, q0, ph);     /* A */
+      if (st)
+        return st;
+      for (int i = 0; i < d; i++)
+        q1[i] = q0[i] + h * s->o.fc.fw[i];
+      memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
+      st = sym_fcache_f (&s->o.fc, ev, tr->tend, q1, ph);   /* B */
+      if (st)
+        return st;
+      /* f_q at p_{k+1/2} with q0 and with q1: the same if H is separable
+         (and T does not depend on t) */
+      sym_sep_check (ev, t, d, s->fqa, s->o.fc.fw);
+    }
+  else
+    {
+      double *x = s->x;
+      /* (1), started from the history of p_{k+1/2} over an explicit half
+         kick (sym_kick_solve) */
+      sym_kick kick = { d, &s->o.fc, &s->o.k[0], ev, t, h, hh, tr->y0,
+                        &s->o.pr[0] };
+      if ((st = sym_kick_solve (&kick, &s->o.r, cont, PH (cu), x, s->scale,
+                                s->rv)))
+        return st;
+      /* the cache holds f at [q_k; P] */
+      memcpy (ph, x, (size_t) d * sizeof (double));
+      memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
+      /* (2), started from the history of q_{k+1} with the base q_k + h
+         f_q(t_k, q_k, P) when it serves, else (and again after a
+         recoverable failure from there) by the base (sym_pred_solve) */
+      s->pk = ph;
+      sym_newton_problem pq = { res_q, mat_q, s };
+      double *base = s->o.pr[1].xb;
+      for (int i = 0; i < d; i++)
+        base[i] = q0[i] + h * s->fqa[i];
+      st = sym_pred_solve (&s->o.k[1], &pq, ev, h, &s->o.pr[1], cont, h, 1,
+                           base, q0, x, s->scale, s->rv);
+      if (st)
+        return st;
+      sym_fcache_move (&s->o.fc, s->tk + s->hk, x, ph);
+      memcpy (q1, x, (size_t) d * sizeof (double));
+    }
+  /* (3): the cache holds f at [q_{k+1}; p_{k+1/2}] on both paths */
+  for (int i = 0; i < d; i++)
+    {
+      fpe[i] = s->o.fc.fw[d + i];
+      p1[i] = ph[i] + hh * s->o.fc.fw[d + i];
+    }
+  if ((st = sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext)))
+    return st;
+  /* (not after a result that overflowed: sym_recs_finish left it
+     unevaluated and the trial unfinished) */
+  if (yerr && s->o.r.trial_ok && (st = sv_trap_error (s, ev, cont, yerr)))
+    s->o.r.trial_ok = 0;
+  return st;
+}
+
+static const sym_stepper_type sv_type = {
+  "sv", sv_alloc, sym_onestep_order, sym_onestep_set_tolerances,
+  sv_step, sym_onestep_accept, sym_onestep_dense,
+  sym_onestep_dense_samples, sym_onestep_free
+};
+
+const sym_stepper_type *const sym_step_sv = &sv_type;

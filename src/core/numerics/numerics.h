@@ -1,0 +1,129 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* numerics.h -- internal to the core: dense LU, Newton's iteration,
+   polynomials (Lagrange, Hermite, Legendre) and Gauss quadrature, and
+   small vector helpers. */
+#ifndef SYM_NUMERICS_H
+#define SYM_NUMERICS_H
+
+#include "../sym.h"
+
+/* ---------------------------------------------------------------- vectors */
+double sym_norm_inf (int n, const double *v);
+int sym_same_vec (int n, const double *a, const double *b);
+/* the end of the last step (of size h) and the start of this one, within
+   a few ulps */
+int sym_same_time (double a, double b, double h);
+/* steps of the same size up to the round-off of fixed steps
+   (SYM_SAME_STEP) */
+int sym_same_step (double h, double hprev);
+
+/* ---------------------------------------------------------------- LU */
+/* Dense LU with reuse (LAPACK dgetrf/dgetrs): factor once, solve many
+   times. */
+typedef struct {
+  int n;
+  double *a;      /* n*n: the matrix, overwritten by its LU factors */
+  int *ipiv;
+  int factored;   /* 1 after a successful sym_lu_factor */
+} sym_lu;
+
+int sym_lu_init (sym_lu *lu, int n);          /* allocates; SYM_ENOMEM */
+void sym_lu_free (sym_lu *lu);
+/* SYM_SINGULAR if singular or not finite */
+int sym_lu_factor (sym_lu *lu, sym_counters *c);
+int sym_lu_solve (sym_lu *lu, double *b, sym_counters *c); /* b <- A \ b */
+
+/* ---------------------------------------------------------------- Newton */
+/* Newton's method on G(x) = 0 (newton.c).  Simplified (the default mode):
+   the matrix is kept (and its LU reused) while convergence is fast; the
+   contraction rate theta is estimated every iteration; the iteration
+   stops when theta/(1-theta) |dx| <= tol (|.| the max norm of dx./scale),
+   or when |dx| is at round-off.  A slow or diverging iteration with a
+   stale matrix asks for a fresh one and goes on; with a fresh one it fails
+   with SYM_NEWTON_FAIL (also for a singular matrix).  Full: a new matrix
+   at every iterate.  A failed callback ends the solve with its own
+   status. */
+typedef struct {
+  /* r = G(x) */
+  int (*residual) (void *ctx, const double *x, double *r);
+  /* A = G'(x) (or a good approximation), n-by-n column-major */
+  int (*matrix) (void *ctx, const double *x, double *a);
+  void *ctx;
+} sym_newton_problem;
+
+enum { SYM_NEWTON_SIMPLIFIED = 0, SYM_NEWTON_FULL = 1 };
+
+typedef struct {
+  int n;
+  sym_lu lu;
+  int mode;         /* SYM_NEWTON_SIMPLIFIED or _FULL */
+  int have_matrix;  /* lu holds a factored matrix that may be reused */
+  int fresh;        /* that matrix was computed in this solve */
+  double tol;       /* stop tolerance on the scaled max norm */
+  int maxit;        /* iterations per solve */
+  double eta;       /* theta/(1-theta) carried from the last solve */
+  double theta;     /* last contraction rate */
+  int iters;        /* iterations of the last solve */
+  /* Exact first corrections (quad: every solve starts with a new matrix
+     at its start x, so that the first correction is Newton's own): the
+     error left after it is about kq |dx_1|^2, kq measured as |dx_2| /
+     |dx_1|^2; a solve then stops after one correction when
+     SYM_NEWTON_QUAD_SAFE kq |dx_1|^2 <= tol, at most SYM_NEWTON_QUAD_AGE
+     times in a row before a second correction measures again.  one: the
+     last solve stopped so; kq_new: it measured kq.  kq_ok = 0 forgets
+     kq (a new h, a new problem). */
+  int quad;
+  double kq;
+  int kq_ok, kq_age, one, kq_new;
+  double *r, *dx, *x0;   /* work */
+} sym_newton;
+
+/* tolerance and iterations from opts (0: the defaults) */
+int sym_newton_init (sym_newton *nw, int n, const sym_method_opts *opts);
+void sym_newton_free (sym_newton *nw);
+/* Forget the kept matrix (e.g. after a change of h). */
+void sym_newton_invalidate (sym_newton *nw);
+/* Solve G(x) = 0 from the start x (overwritten by the solution) in nw's
+   mode.  scale[i] > 0 weights component i in the stopping norm. */
+int sym_newton_solve (sym_newton *nw, const sym_newton_problem *p, double *x,
+                      const double *scale, sym_counters *c);
+/* One correction from x with the factored matrix: nw->dx = -A^{-1} G(x)
+   (not applied: the caller adds it); *dxn its scaled max norm, NaN or Inf
+   when not finite (scale NULL: not computed) */
+int sym_newton_dx (sym_newton *nw, const sym_newton_problem *p,
+                   const double *x, const double *scale, sym_counters *c,
+                   double *dxn);
+/* x += nw->dx, counted as a Newton iteration */
+void sym_newton_apply (sym_newton *nw, double *x, sym_counters *c);
+
+/* ---------------------------------------------------------------- polynomials */
+/* Barycentric weights of the points x_0..x_{np-1} */
+void sym_bary_weights (int np, const double *x, double *bw);
+/* The Lagrange basis c_i = L_i(x) through the points xb (barycentric
+   weights bw), by the first barycentric form (backward stable, also
+   outside the points); for many x at the same points */
+void sym_lagrange_basis (int np, const double *xb, const double *bw,
+                         double x, double *c);
+/* The same c_i at t as products of ratios: for one t */
+void sym_lagrange_weights (int np, const double *ts, double t, double *c);
+/* Weights w_l of v_new = sum_{l<L} w_l v_{-l}: the polynomial of degree
+   L - 1 through L equally spaced values, one spacing further (exact
+   integers, L <= 4) */
+const double *sym_extrap_weights (int L);
+/* The cubic Hermite interpolant through (y0, f0) at t and (y1, f1) at
+   t + h, at t + th h (n components) */
+void sym_hermite (int n, double h, double th, const double *y0,
+                  const double *y1, const double *f0, const double *f1,
+                  double *y);
+
+/* ---------------------------------------------------------------- quadrature */
+/* Gauss-Legendre nodes z[0..m-1] (ascending, in [-1, 1]) and weights w,
+   by Golub-Welsch (LAPACK dstev).  Returns 0 or a status < 0. */
+int sym_gauss_legendre (int m, double *z, double *w);
+/* Legendre polynomials l_0..l_{n-1} and their derivatives at x:
+   l[i] = l_i(x), dl[i] = l_i'(x). */
+void sym_legendre (int n, double x, double *l, double *dl);
+
+#endif

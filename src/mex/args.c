@@ -1,0 +1,105 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* args.c -- a solver's arguments FCN, TSPAN, Y0, OPTS, P1, ...: checked,
+   with errors that name the solver and say what was expected. */
+#include "symmex.h"
+
+#include <math.h>
+
+static int
+is_plain_numeric (const mxArray *a)
+{
+  return mxIsNumeric (a) && ! mxIsComplex (a);
+}
+
+/* a as doubles (a converted copy when it is of another class) */
+static const double *
+doubles (const mxArray *a)
+{
+  return mxGetPr (mxIsDouble (a) ? a : symmex_to_double (a));
+}
+
+static void
+read_tspan (const char *name, const mxArray *arg, symmex_args *a)
+{
+  char buf[64];
+  const mxArray *ts = symmex_full (arg);
+  if (! is_plain_numeric (ts) || mxGetNumberOfElements (ts) < 2
+      || ! symmex_is_vector (ts))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: TSPAN must be a real vector [T0, "
+                       "TF] or [T0, T1, ..., TF] of at least 2 elements, got "
+                       "%s", name, symmex_describe (ts, buf, sizeof buf));
+  const double *tspan = doubles (ts);
+  const int nt = (int) mxGetNumberOfElements (ts);
+  for (int i = 0; i < nt; i++)
+    if (! isfinite (tspan[i]))
+      mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: TSPAN must be finite, element "
+                         "%d is %s", name, i + 1,
+                         SYMMEX_NUM (tspan[i], "%g"));
+  const double dir = tspan[1] > tspan[0] ? 1 : -1;
+  for (int i = 1; i < nt; i++)
+    if (! (dir * (tspan[i] - tspan[i - 1]) > 0))
+      mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: TSPAN must be strictly "
+                         "monotonic (elements %d and %d are %.17g and "
+                         "%.17g)", name, i, i + 1, tspan[i - 1], tspan[i]);
+  if (! isfinite (tspan[nt - 1] - tspan[0]))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: TSPAN must span a finite "
+                       "interval, TF - T0 = %g - (%g) overflows", name,
+                       tspan[nt - 1], tspan[0]);
+  a->tspan = tspan;
+  a->ntspan = nt;
+  a->dir = dir;
+}
+
+static void
+read_y0 (const char *name, const mxArray *arg, symmex_args *a)
+{
+  char buf[64];
+  const mxArray *y0a = symmex_full (arg);
+  if (! is_plain_numeric (y0a) || mxIsEmpty (y0a) || ! symmex_is_vector (y0a))
+    {
+      if (mxIsComplex (y0a))
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Y0 must be real, got a "
+                           "complex value", name);
+      mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Y0 must be a non-empty real "
+                         "numeric vector [q0; p0], got %s", name,
+                         symmex_describe (y0a, buf, sizeof buf));
+    }
+  const int n = (int) mxGetNumberOfElements (y0a);
+  if (n % 2)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Y0 must have an even number of "
+                       "elements [q; p], got %d", name, n);
+  const double *y0 = doubles (y0a);
+  for (int i = 0; i < n; i++)
+    if (! isfinite (y0[i]))
+      mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Y0 must be finite, element %d "
+                         "is %s", name, i + 1, SYMMEX_NUM (y0[i], "%g"));
+  a->y0 = y0;
+  a->n = n;
+}
+
+void
+symmex_read_args (const char *name, int nlhs, int nrhs,
+                  const mxArray *prhs[], symmex_args *a)
+{
+  char buf[64];
+  if (nrhs < 3)
+    mexErrMsgIdAndTxt ("Octave:invalid-fun-call",
+                       "%s: expected %s (FCN, TSPAN, Y0) or %s (FCN, TSPAN, "
+                       "Y0, OPTS, P1, ...), got %d arguments", name, name,
+                       name, nrhs);
+  if (nlhs > 5)
+    mexErrMsgIdAndTxt ("Octave:invalid-fun-call",
+                       "%s: at most 5 outputs [T, Y, TE, YE, IE]", name);
+  a->fcn = prhs[0];
+  if (! symmex_is_function (a->fcn))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: FCN must be a function handle or "
+                       "the name of a function, got %s", name,
+                       symmex_describe_fn (a->fcn, buf, sizeof buf));
+  read_tspan (name, prhs[1], a);
+  read_y0 (name, prhs[2], a);
+  a->opts = nrhs > 3 ? prhs[3] : NULL;
+  a->nextra = nrhs > 4 ? nrhs - 4 : 0;
+  a->extra = prhs + 4;
+}

@@ -1,0 +1,88 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* entry.c -- one call of a solver: its arguments and options, the
+   problem, the run of the core, the outputs.  The method enters only
+   through its descriptor. */
+#include "symmex.h"
+
+#include <string.h>
+
+/* The driver's options for the run: output times or every step (sol:
+   step points only, as ode45 gives it), Refine, fixed or adaptive
+   steps, events and the sinks */
+static void
+driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
+             int want_sol, sym_driver_opts *d)
+{
+  memset (d, 0, sizeof (*d));
+  d->t0 = a->tspan[0];
+  d->tf = a->tspan[a->ntspan - 1];
+  d->tout = a->tspan;
+  d->ntout = want_sol ? 2 : a->ntspan;
+  d->refine = (d->ntout > 2 || want_sol) ? 1 : o->refine;
+  d->h_fixed = o->h_fixed;
+  d->nsteps_fixed = o->nsteps_fixed;
+  d->tol.rtol = o->rtol;
+  d->tol.atol = o->atol;
+  d->tol.atol_len = o->atol_len;
+  d->tol.norm_control = o->norm_control;
+  d->h0 = o->h0;
+  d->hmax = o->hmax;
+  d->max_steps = o->max_steps;
+  d->nevents = c->nevents;
+  d->events = c->nevents > 0 ? symmex_cb_events : NULL;
+  d->event_user = c;
+  d->event_out = symmex_sink_event;
+  d->output = symmex_sink_row;
+  d->output_user = c;
+}
+
+void
+symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
+            const mxArray *prhs[])
+{
+  const char *name = m->name;
+  sym_set_allocator (mxMalloc, mxFree);
+
+  symmex_args a;
+  symmex_opts o;
+  symmex_read_args (name, nlhs, nrhs, prhs, &a);
+  symmex_parse_options (name, &a, &o);
+  void *own = mxCalloc (1, m->own_size);
+  m->parse (name, a.opts && ! mxIsEmpty (a.opts) ? a.opts : NULL, own);
+
+  sym_system sys;
+  symmex_ctx *c = symmex_problem (name, &a, &o, m->needs_newton (own),
+                                  nlhs, &sys);
+  sym_method_opts mo;
+  memset (&mo, 0, sizeof mo);
+  mo.newton_tol = o.newton_tol;
+  mo.max_newton = o.max_newton;
+  mo.own = own;
+  sym_driver_opts dopt;
+  driver_opts (&a, &o, c, nlhs == 1, &dopt);
+  if (dopt.ntout > 2)
+    {
+      double tend = sym_fixed_end (&dopt);
+      if (a.dir * (dopt.tf - tend) > 0)
+        mexWarnMsgIdAndTxt ("symplectic:tspan-beyond-end", "%s: "
+                            "TimeStepNumber*TimeStepSize ends at t = %g; "
+                            "no output for TSPAN beyond that", name, tend);
+    }
+
+  sym_stats st;
+  int status = sym_integrate (*m->type, &sys, &mo, &dopt, a.y0, &st);
+  /* the probe of FCN at (t0, y0) evaluated it once */
+  st.cnt.nrhs++;
+  st.cnt.nrhs_states++;
+
+  if (o.outputfcn)
+    symmex_outputfcn (c, NULL, 0, NULL, "done");
+  symmex_report (m, own, &o, &a, c, &st, status);
+  char jac_used[160];
+  symmex_jac_used (c, &st, jac_used, sizeof jac_used);
+  if (o.stats)
+    symmex_print_stats (&st, jac_used);
+  symmex_outputs (m, own, c, &st, jac_used, nlhs, plhs);
+}

@@ -1,0 +1,11 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* se.c -- odeSE: symplectic Euler (core: methods/se.c). */
+#include "onestep.h"
+
+const symmex_method symmex_method_se = {
+  "odeSE", &sym_step_se, sizeof (sym_onestep_opts), symmex_onestep_parse,
+  symmex_onestep_options, symmex_onestep_needs_newton, NULL, NULL,
+  "dH/dq changed with p at the same q"
+};

@@ -1,0 +1,243 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* outputs.c -- what a run hands back: the rows and events as they come
+   (the core's sinks), OutputFcn, and the outputs [t, y, te, ye, ie] or
+   sol with its stats. */
+#include "symmex.h"
+
+#include <math.h>
+#include <string.h>
+
+/* OutputFcn's stop flag as `if (stop)` takes it (as ode45 does): true
+   when all its elements are nonzero, false when empty; NaN and values
+   that are not logical, char or real numeric are errors. */
+static int
+stop_flag (symmex_ctx *c, mxArray **pa, double t)
+{
+  char buf[64];
+  if (mxIsEmpty (*pa))
+    return 0;
+  mxArray *a = symmex_take_full (pa);
+  if (! (mxIsNumeric (a) || mxIsLogical (a) || mxIsChar (a))
+      || mxIsComplex (a))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: OutputFcn must return a logical or "
+                       "real numeric stop flag, got %s at t = %.17g",
+                       c->solver, symmex_describe (a, buf, sizeof buf), t);
+  size_t k = mxGetNumberOfElements (a);
+  /* logical (the usual false) and char without a call of double () */
+  if (mxIsLogical (a) || mxIsChar (a))
+    {
+      for (size_t i = 0; i < k; i++)
+        if (mxIsLogical (a) ? ! mxGetLogicals (a)[i] : ! mxGetChars (a)[i])
+          return 0;
+      return 1;
+    }
+  const double *v = mxGetPr (symmex_take_double (pa));
+  int stop = 1;
+  for (size_t i = 0; i < k; i++)
+    {
+      if (isnan (v[i]))
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: OutputFcn returned NaN as its stop "
+                           "flag at t = %.17g", c->solver, t);
+      if (v[i] == 0.0)
+        stop = 0;
+    }
+  return stop;
+}
+
+/* OutputFcn (t, y(OutputSel), flag, extras...): returns its stop flag. */
+int
+symmex_outputfcn (symmex_ctx *c, const double *t, int nt, const double *y,
+                const char *flag)
+{
+  const symmex_opts *o = c->o;
+  int nsel = o->outputsel ? o->noutputsel : c->n;
+  mxArray *ta, *ya;
+  if (! t)
+    {
+      ta = mxCreateDoubleMatrix (0, 0, mxREAL);
+      ya = mxCreateDoubleMatrix (0, 0, mxREAL);
+    }
+  else
+    {
+      ta = mxCreateDoubleMatrix (nt, 1, mxREAL);
+      memcpy (mxGetPr (ta), t, sizeof (double) * nt);
+      ya = mxCreateDoubleMatrix (nsel, 1, mxREAL);
+      for (int i = 0; i < nsel; i++)
+        mxGetPr (ya)[i] = y[o->outputsel ? o->outputsel[i] : i];
+    }
+  c->oargs[1] = ta;
+  c->oargs[2] = ya;
+  c->oargs[3] = mxCreateString (flag);
+  int nout = strcmp (flag, "") == 0 ? 1 : 0;
+  mxArray *out[1] = { NULL };
+  symmex_call (nout, out, c->nargs + 1, c->oargs, c->oname);
+  int stop = nout && out[0] ? stop_flag (c, out, t ? t[0] : NAN) : 0;
+  if (out[0])
+    mxDestroyArray (out[0]);
+  mxDestroyArray (c->oargs[3]);
+  mxDestroyArray (ya);
+  mxDestroyArray (ta);
+  return stop;
+}
+
+int
+symmex_sink_row (double t, const double *y, void *user)
+{
+  symmex_ctx *c = user;
+  if (c->nrows == c->cap)
+    {
+      c->cap = c->cap ? 2 * c->cap : 256;
+      c->tbuf = mxRealloc (c->tbuf, sizeof (double) * c->cap);
+      c->ybuf = mxRealloc (c->ybuf, sizeof (double) * c->cap * c->n);
+    }
+  c->tbuf[c->nrows] = t;
+  memcpy (c->ybuf + c->nrows * c->n, y, sizeof (double) * c->n);
+  c->nrows++;
+  if (c->o->outputfcn && c->nrows > 1)
+    {
+      if (symmex_outputfcn (c, &t, 1, y, ""))
+        return 1;
+    }
+  return 0;
+}
+
+int
+symmex_sink_event (double te, const double *ye, int ie, void *user)
+{
+  symmex_ctx *c = user;
+  if (c->nev == c->evcap)
+    {
+      c->evcap = c->evcap ? 2 * c->evcap : 16;
+      c->te = mxRealloc (c->te, sizeof (double) * c->evcap);
+      c->ye = mxRealloc (c->ye, sizeof (double) * c->evcap * c->n);
+      c->ie = mxRealloc (c->ie, sizeof (int) * c->evcap);
+    }
+  c->te[c->nev] = te;
+  memcpy (c->ye + c->nev * c->n, ye, sizeof (double) * c->n);
+  c->ie[c->nev] = ie;
+  c->nev++;
+  return 0;
+}
+
+static mxArray *
+rows_matrix (const double *buf, size_t nrows, int n)
+{
+  /* buf holds the rows as columns of an n-by-nrows array */
+  mxArray *a = mxCreateDoubleMatrix (nrows, n, mxREAL);
+  double *p = mxGetPr (a);
+  for (size_t r = 0; r < nrows; r++)
+    for (int i = 0; i < n; i++)
+      p[r + (size_t) i * nrows] = buf[r * n + i];
+  return a;
+}
+
+static mxArray *
+column_of (const double *v, size_t k)
+{
+  mxArray *a = mxCreateDoubleMatrix (k, 1, mxREAL);
+  if (k)
+    memcpy (mxGetPr (a), v, sizeof (double) * k);
+  return a;
+}
+
+/* The events found: te (column), ye (one row each), ie (column, 1-based);
+   with none, all three 0-by-0, as ode45 returns them */
+static void
+event_outputs (const symmex_ctx *c, int n, mxArray **te, mxArray **ye,
+               mxArray **ie)
+{
+  if (c->nev == 0)
+    {
+      *te = mxCreateDoubleMatrix (0, 0, mxREAL);
+      *ye = mxCreateDoubleMatrix (0, 0, mxREAL);
+      *ie = mxCreateDoubleMatrix (0, 0, mxREAL);
+      return;
+    }
+  *te = column_of (c->te, c->nev);
+  *ye = rows_matrix (c->ye, c->nev, n);
+  *ie = mxCreateDoubleMatrix (c->nev, 1, mxREAL);
+  for (size_t i = 0; i < c->nev; i++)
+    mxGetPr (*ie)[i] = c->ie[i] + 1;
+}
+
+static mxArray *
+stats_struct (const sym_counters *k, const char *jac_source)
+{
+  const char *names[] = { "nsteps", "nfailed", "nfevals", "npds",
+                          "ndecomps", "nlinsols", "nnewton", "nfdevals",
+                          "nstates", "jacobian_source" };
+  mxArray *s = mxCreateStructMatrix (1, 1, 10, names);
+  double vals[] = { k->nsteps, k->nfailed, k->nrhs, k->njac, k->nlu,
+                    k->nsolve, k->nnewton, k->nfd, k->nrhs_states };
+  for (int i = 0; i < 9; i++)
+    mxSetFieldByNumber (s, 0, i, mxCreateDoubleScalar (vals[i]));
+  mxSetFieldByNumber (s, 0, 9, mxCreateString (jac_source));
+  return s;
+}
+
+
+static mxArray *
+sol_struct (const symmex_method *m, const void *own, const symmex_ctx *c,
+            const sym_stats *st, const char *jac_used)
+{
+  const int n = c->n, has_ev = c->o->events != NULL;
+  const char *fields[] = { "x", "y", "solver", "xe", "ye", "ie", "stats" };
+  mxArray *s = mxCreateStructMatrix (1, 1, 3, fields);
+  mxArray *x = mxCreateDoubleMatrix (1, c->nrows, mxREAL);
+  if (c->nrows)
+    memcpy (mxGetPr (x), c->tbuf, sizeof (double) * c->nrows);
+  mxArray *y = mxCreateDoubleMatrix (n, c->nrows, mxREAL);
+  if (c->nrows)
+    memcpy (mxGetPr (y), c->ybuf, sizeof (double) * c->nrows * n);
+  mxSetField (s, 0, "x", x);
+  mxSetField (s, 0, "y", y);
+  mxSetField (s, 0, "solver", mxCreateString (m->name));
+  if (has_ev)
+    {
+      mxArray *te, *ye, *ie;
+      event_outputs (c, n, &te, &ye, &ie);
+      for (int k = 3; k < 6; k++)
+        mxAddField (s, fields[k]);
+      mxSetField (s, 0, "xe", te);
+      mxSetField (s, 0, "ye", ye);
+      mxSetField (s, 0, "ie", ie);
+    }
+  mxAddField (s, "stats");
+  mxSetField (s, 0, "stats", stats_struct (&st->cnt, jac_used));
+  if (m->sol_fields)
+    m->sol_fields (s, own, st);
+  return s;
+}
+
+void
+symmex_outputs (const symmex_method *m, const void *own,
+                const symmex_ctx *c, const sym_stats *st,
+                const char *jac_used, int nlhs, mxArray *plhs[])
+{
+  const int n = c->n;
+  if (nlhs == 0)
+    return;
+  if (nlhs == 1)
+    {
+      plhs[0] = sol_struct (m, own, c, st, jac_used);
+      return;
+    }
+  plhs[0] = column_of (c->tbuf, c->nrows);
+  plhs[1] = rows_matrix (c->ybuf, c->nrows, n);
+  if (nlhs > 2)
+    {
+      mxArray *te, *ye, *ie;
+      event_outputs (c, n, &te, &ye, &ie);
+      plhs[2] = te;
+      if (nlhs > 3)
+        plhs[3] = ye;
+      else
+        mxDestroyArray (ye);
+      if (nlhs > 4)
+        plhs[4] = ie;
+      else
+        mxDestroyArray (ie);
+    }
+}

@@ -1,0 +1,170 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* problem.c -- the problem a run solves: the user's functions with the
+   argument arrays their calls reuse, FCN probed at the initial point, the
+   source of Newton's matrices, the number of events, and the core's
+   system of callbacks. */
+#include "symmex.h"
+
+#include <math.h>
+#include <string.h>
+
+static mxArray *
+col (int n)
+{
+  return mxCreateDoubleMatrix (n, 1, mxREAL);
+}
+
+/* FCN at (t0, y0): its size and values, and (probe_hess) whether it gives
+   the Hessian as a second output; returns that */
+static int
+probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
+{
+  const int n = c->n;
+  mxArray *out[2] = { NULL, NULL };
+  int have2 = 0;
+  if (probe_hess)
+    {
+      mxArray *ex = mexCallMATLABWithTrap (2, out, c->nargs, c->args,
+                                           "feval");
+      if (ex)
+        {
+          mxDestroyArray (ex);
+          out[0] = out[1] = NULL;
+        }
+      else if (out[1] && ! mxIsEmpty (out[1]))
+        have2 = 1;
+    }
+  if (! out[0])
+    symmex_call (1, out, c->nargs, c->args, c->fname);
+  const double *f0 = symmex_checked (c, &out[0], n, "FCN", 0, a->tspan[0],
+                                     "a vector of %d real elements", n);
+  for (int i = 0; i < n; i++)
+    if (! isfinite (f0[i]))
+      mexErrMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned %s "
+                         "(element %d) at t = %.17g, the initial point",
+                         c->solver, SYMMEX_NUM (f0[i], "%g"), i + 1,
+                         a->tspan[0]);
+  if (have2)
+    symmex_checked (c, &out[1], symmex_hessian_shape (out[1], n)
+                    ? (size_t) n * n : (size_t) -1, "FCN (second output)",
+                    0, a->tspan[0], SYMMEX_HESS_EXPECT, n, n, n * n);
+  return have2;
+}
+
+/* The source of Newton's matrices, in the order of precedence: the
+   Jacobian (matrix or function), HamiltonianHessFcn, FCN's second output,
+   finite differences */
+static void
+jacobian_source (symmex_ctx *c, const symmex_opts *o, int have2)
+{
+  if (o->jacobian && ! symmex_is_function (o->jacobian))
+    {
+      c->jac_source = JAC_MATRIX;
+      c->jac_const = mxGetPr (o->jacobian);
+    }
+  else if (o->jacobian)
+    c->jac_source = JAC_FCN;
+  else if (o->hessfcn)
+    c->jac_source = JAC_HESSFCN;
+  else if (have2)
+    c->jac_source = JAC_FCN2;
+  else
+    c->jac_source = JAC_FD;
+  if (c->jac_source == JAC_MATRIX || c->jac_source == JAC_FD)
+    return;
+  c->jargs = mxCalloc (c->nargs, sizeof (mxArray *));
+  memcpy (c->jargs, c->args, sizeof (mxArray *) * c->nargs);
+  c->jargs[0] = (mxArray *) (c->jac_source == JAC_FCN ? o->jacobian
+                             : c->jac_source == JAC_HESSFCN ? o->hessfcn
+                             : c->args[0]);
+  c->jargs[1] = mxCreateDoubleScalar (0);
+  c->jargs[2] = col (c->n);
+  symmex_direct_name (c->jargs[0], c->jname, sizeof c->jname);
+}
+
+/* Events: one call at t0 tells how many there are */
+static void
+count_events (symmex_ctx *c, const symmex_args *a, const mxArray *events)
+{
+  char buf[64];
+  c->eargs = mxCalloc (c->nargs, sizeof (mxArray *));
+  memcpy (c->eargs, c->args, sizeof (mxArray *) * c->nargs);
+  c->eargs[0] = (mxArray *) events;
+  c->eargs[1] = mxCreateDoubleScalar (a->tspan[0]);
+  c->eargs[2] = col (c->n);
+  memcpy (mxGetPr (c->eargs[2]), a->y0, sizeof (double) * c->n);
+  mxArray *eo[3] = { NULL, NULL, NULL };
+  symmex_direct_name (events, c->ename, sizeof c->ename);
+  symmex_call (3, eo, c->nargs, c->eargs, c->ename);
+  if (! eo[1] || ! eo[2])
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the Events function must return "
+                       "three outputs [VALUE, ISTERMINAL, DIRECTION], got %d",
+                       c->solver, eo[0] ? (eo[1] ? 2 : 1) : 0);
+  /* an empty VALUE: no events (as in ode45) */
+  if (! eo[0] || ! (mxIsNumeric (eo[0]) || mxIsLogical (eo[0]))
+      || mxIsComplex (eo[0]))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the Events function must return "
+                       "[VALUE, ISTERMINAL, DIRECTION] with a real VALUE, "
+                       "got VALUE = %s", c->solver,
+                       eo[0] ? symmex_describe (eo[0], buf, sizeof buf)
+                       : "nothing");
+  c->nevents = (int) mxGetNumberOfElements (eo[0]);
+  for (int k = 0; k < 3; k++)
+    mxDestroyArray (eo[k]);
+}
+
+symmex_ctx *
+symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
+                int need_jac, int nlhs, sym_system *sys)
+{
+  const int n = a->n;
+  symmex_ctx *c = mxCalloc (1, sizeof (symmex_ctx));
+  c->solver = solver;
+  c->n = n;
+  c->d = n / 2;
+  c->o = o;
+  c->nextra = a->nextra;
+  c->extra = a->extra;
+  c->nargs = 3 + c->nextra;
+  c->args = mxCalloc (c->nargs, sizeof (mxArray *));
+  c->args[0] = (mxArray *) a->fcn;
+  c->args[1] = mxCreateDoubleScalar (a->tspan[0]);
+  c->args[2] = col (n);
+  for (int i = 0; i < c->nextra; i++)
+    c->args[3 + i] = (mxArray *) c->extra[i];
+  memcpy (mxGetPr (c->args[2]), a->y0, sizeof (double) * n);
+  symmex_direct_name (a->fcn, c->fname, sizeof c->fname);
+
+  /* the Hessian as FCN's second output only matters to Newton */
+  int have2 = probe_fcn (c, a, need_jac && ! o->jacobian && ! o->hessfcn);
+  c->jac_source = JAC_NONE;
+  if (need_jac)
+    jacobian_source (c, o, have2);
+  if (o->events)
+    count_events (c, a, o->events);
+
+  /* nargout = 0 and no OutputFcn plots with odeplot, as ode45 */
+  if (nlhs == 0 && ! o->outputfcn)
+    o->outputfcn = mxCreateString ("odeplot");
+  if (o->outputfcn)
+    {
+      c->oargs = mxCalloc (c->nargs + 1, sizeof (mxArray *));
+      c->oargs[0] = (mxArray *) o->outputfcn;
+      symmex_direct_name (o->outputfcn, c->oname, sizeof c->oname);
+      for (int i = 0; i < c->nextra; i++)
+        c->oargs[4 + i] = (mxArray *) c->extra[i];
+      symmex_outputfcn (c, a->tspan, a->ntspan, a->y0, "init");
+    }
+
+  memset (sys, 0, sizeof (*sys));
+  sys->dim = c->d;
+  sys->rhs = symmex_cb_rhs;
+  sys->rhs_batch = o->vectorized ? symmex_cb_rhs_batch : NULL;
+  sys->jac = c->jac_source == JAC_FD || c->jac_source == JAC_NONE ? NULL
+             : symmex_cb_jac;
+  sys->rhs_jac = c->jac_source == JAC_FCN2 ? symmex_cb_rhs_jac : NULL;
+  sys->user = c;
+  return c;
+}
