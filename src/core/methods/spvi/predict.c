@@ -186,34 +186,56 @@ predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
     }
 }
 
-/* The scales of the step from y starting at s->lo.x: the size of q
-   (|q_k|, |q_{k+1}|, and the largest of the steps before) for the a_i,
-   the size of p (|p_k|, |P_j|, likewise) for the P_j, so that a block
-   passing through zero keeps the scale of its size in the run; a block
-   of zeros takes the other's size (1 if both are zero).  Fixed steps converge each block to round-off of its own size,
-   so that conservation does not depend on the units of q and p (with
-   one scale for all, P_j of 1e-6 the size of q were left off by 1e-6
-   of their size).  Within a block one scale serves all components: a
+/* The scales of the step (h) from y starting at s->lo.x: for the a_i,
+   the size of q (|q_k|, |q_{k+1}|) or the round-off that p's carries
+   into q through the step (|h| |Aqp| |p|, by the node Jacobians of the
+   kept matrix), and the largest of these of the steps before; for the
+   P_j likewise the size of p (|p_k|, |P_j|) or |h| |Apq| |q|.  So fixed
+   steps converge each block to its own round-off, whatever the units of
+   q and p, and a block passing through zero keeps the scale of its size
+   in the run; a block of zeros takes the other's size (1 if both are
+   zero).  Within a block one scale serves all components: a
    per-component scale cannot be met below the round-off that f's
    coupling carries from the large components into the small ones.
-   Adaptive steps take the larger size for both blocks (adaptive=1):
+   Adaptive steps take the larger size for both blocks (adaptive = 1):
    their solves stop at an absolute accuracy set by the tolerances. */
 static spvi_scale
-start_scale (spvi_state *s, const double *y, int adaptive)
+start_scale (spvi_state *s, const double *y, double h, int adaptive)
 {
   const int d = s->d, n = s->n, m = s->m;
   const double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
-  double sq = 0.0;
+  double *qa = s->vq, *pa = s->vq + d;
+  double sq = 0.0, sp = 0.0;
   for (int k = 0; k < d; k++)
     {
       double v = y[k];
       for (int i = 1; i < n; i += 2)
         v += 2.0 * a[(size_t) (i - 1) * d + k];
-      sq = fmax (sq, fmax (fabs (v), fabs (y[k])));
+      qa[k] = fmax (fabs (v), fabs (y[k]));
+      pa[k] = fabs (y[d + k]);
+      for (int j = 0; j < m; j++)
+        pa[k] = fmax (pa[k], fabs (P[(size_t) j * d + k]));
+      sq = fmax (sq, qa[k]);
+      sp = fmax (sp, pa[k]);
     }
-  double sp = fmax (sym_norm_inf (d, y + d), sym_norm_inf (m * d, P));
   spvi_scale S;
   S.all = fmax (sq, sp) > 0 ? fmax (sq, sp) : 1.0;
+  const size_t nn = 2 * (size_t) d;
+  for (int j = 0; s->lo.nae > 0 && j < m; j++)
+    {
+      const double *A = spvi_A (&s->lo, j);
+      for (int k = 0; k < d; k++)
+        {
+          double nq = 0.0, np = 0.0;
+          for (int l = 0; l < d; l++)
+            {
+              nq += fabs (AQP (A, k, l)) * pa[l];
+              np += fabs (APQ (A, k, l)) * qa[l];
+            }
+          sq = fmax (sq, fabs (h) * nq);
+          sp = fmax (sp, fabs (h) * np);
+        }
+    }
   if (isfinite (sq) && isfinite (sp))
     {
       s->typ_q = sq = fmax (sq, s->typ_q);
@@ -267,7 +289,7 @@ spvi_predict (spvi_state *s, sym_eval *ev, double t, double h,
                                       * s->f0[d + k];
         }
     }
-  *S = start_scale (s, y, adaptive);
+  *S = start_scale (s, y, h, adaptive);
   return SYM_SUCCESS;
 }
 
@@ -356,7 +378,7 @@ spvi_lengthen (spvi_state *s, sym_eval *ev, double t, double h,
       memcpy (tr->P, s->lo.x + na, (size_t) s->m * d * sizeof (double));
       spvi_rec_noise (s, tr, tol, S);
       predict_poly (s, tr, -1.0, 2.0, sym_norm_inf (2 * d, y));
-      *S = start_scale (s, y, 0);
+      *S = start_scale (s, y, ldexp (h, -k), 0);
       st = spvi_solve (&s->lo, ev, t, ldexp (h, -k), y, S, s, tol,
                        tr->y1);
     }
