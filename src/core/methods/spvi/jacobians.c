@@ -49,6 +49,7 @@ fill (spvi_core *c, double *M)
   const size_t nn = 2 * (size_t) d;
   const double hh = 0.5 * c->h;
   c->h_mat = c->h;
+  c->noise_ok = 0;
   memset (M, 0, (size_t) N * N * sizeof (double));
 #define MAT(row, col) M[(size_t) (col) * N + (row)]
   const int p0 = (n - 1) * d;     /* first P column, first R2 row */

@@ -189,7 +189,8 @@ predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
 /* The scales of the step (h) from y starting at s->lo.x: for the a_i,
    the size of q (|q_k|, |q_{k+1}|) or the round-off that p's carries
    into q through the step (|h| |Aqp| |p|, by the node Jacobians of the
-   kept matrix), and the largest of these of the steps before; for the
+   kept matrix, at the state where it was first used), and the largest
+   of these of the steps before; for the
    P_j likewise the size of p (|p_k|, |P_j|) or |h| |Apq| |q|.  So fixed
    steps converge each block to its own round-off, whatever the units of
    q and p, and a block passing through zero keeps the scale of its size
@@ -199,6 +200,33 @@ predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
    coupling carries from the large components into the small ones.
    Adaptive steps take the larger size for both blocks (adaptive = 1):
    their solves stop at an absolute accuracy set by the tolerances. */
+/* The round-off of one block carried into the other by the node
+   Jacobians in c->A: max |Aqp| |p| and max |Apq| |q| (qa, pa: the sizes
+   of the components); computed once for each matrix */
+static void
+carried_noise (spvi_core *c, const double *qa, const double *pa)
+{
+  const int d = c->d;
+  const size_t nn = 2 * (size_t) d;
+  c->noise_q = c->noise_p = 0.0;
+  for (int j = 0; j < c->m; j++)
+    {
+      const double *A = spvi_A (c, j);
+      for (int k = 0; k < d; k++)
+        {
+          double nq = 0.0, np = 0.0;
+          for (int l = 0; l < d; l++)
+            {
+              nq += fabs (AQP (A, k, l)) * pa[l];
+              np += fabs (APQ (A, k, l)) * qa[l];
+            }
+          c->noise_q = fmax (c->noise_q, nq);
+          c->noise_p = fmax (c->noise_p, np);
+        }
+    }
+  c->noise_ok = 1;
+}
+
 static spvi_scale
 start_scale (spvi_state *s, const double *y, double h, int adaptive)
 {
@@ -220,21 +248,12 @@ start_scale (spvi_state *s, const double *y, double h, int adaptive)
     }
   spvi_scale S;
   S.all = fmax (sq, sp) > 0 ? fmax (sq, sp) : 1.0;
-  const size_t nn = 2 * (size_t) d;
-  for (int j = 0; s->lo.nae > 0 && j < m; j++)
+  if (s->lo.nae > 0 && ! s->lo.noise_ok)
+    carried_noise (&s->lo, qa, pa);
+  if (s->lo.nae > 0)
     {
-      const double *A = spvi_A (&s->lo, j);
-      for (int k = 0; k < d; k++)
-        {
-          double nq = 0.0, np = 0.0;
-          for (int l = 0; l < d; l++)
-            {
-              nq += fabs (AQP (A, k, l)) * pa[l];
-              np += fabs (APQ (A, k, l)) * qa[l];
-            }
-          sq = fmax (sq, fabs (h) * nq);
-          sp = fmax (sp, fabs (h) * np);
-        }
+      sq = fmax (sq, fabs (h) * s->lo.noise_q);
+      sp = fmax (sp, fabs (h) * s->lo.noise_p);
     }
   if (isfinite (sq) && isfinite (sp))
     {

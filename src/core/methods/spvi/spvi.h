@@ -76,6 +76,11 @@ typedef struct {
   double *wk;          /* 2d (work) */
   sym_newton nw;
   double h_mat;        /* h of the kept matrix */
+  /* |Aqp| |p| and |Apq| |q| of the node Jacobians in A (see
+     predict.c), at the state of the step that first asked; noise_ok = 0
+     when A changes */
+  double noise_q, noise_p;
+  int noise_ok;
   int extra;           /* corrections of slow solves beyond
                           SYM_SPVI_REFRESH_ITERS since its Jacobians were
                           evaluated */
