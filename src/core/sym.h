@@ -246,6 +246,8 @@ typedef struct {
   /* points inside each step at which the driver also samples the event
      functions on the dense output (long steps can hide a zero pair) */
   int (*dense_samples) (const void *state);
+  /* the degree of the dense output's polynomial on a step (at most) */
+  int (*dense_degree) (const void *state);
   void (*free) (void *state);
 } sym_stepper_type;
 
@@ -279,6 +281,13 @@ typedef int (*sym_output_fn) (double t, const double *y, void *user);
 /* Event sink: an event located at (te, ye), index ie (0-based). */
 typedef int (*sym_eventout_fn) (double te, const double *ye, int ie,
                                 void *user);
+/* Dense sink: the dense output of the accepted step [t, tnew] at the
+   Chebyshev-Lobatto points t + th_i (tnew - t), th_i = (1 - cos (pi i /
+   (k + 1))) / 2, i = 0..k+1 (enough for the step's polynomial, of degree
+   k + 1 = dense_degree), as the columns of the n-by-(k + 2) y (the first
+   is y(t), the last y(tnew)).  Return 0 to go on, < 0 on error. */
+typedef int (*sym_denseout_fn) (double t, double tnew, int k,
+                                const double *y, void *user);
 
 typedef struct {
   double t0, tf;
@@ -306,6 +315,8 @@ typedef struct {
   /* output */
   sym_output_fn output;
   void *output_user;
+  sym_denseout_fn dense_out;  /* NULL: none */
+  void *dense_user;
 } sym_driver_opts;
 
 /* Where a run of TimeStepNumber steps of TimeStepSize ends (h_fixed > 0,

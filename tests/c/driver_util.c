@@ -112,9 +112,12 @@ ex_samples (const void *st)
 
 static void ex_free (void *st) { sym_free (st); }
 
+/* the exact flow, sampled as a polynomial of this degree */
+static int ex_degree (const void *st) { (void) st; return 12; }
+
 const sym_stepper_type drv_exact_type = {
   "exact", ex_alloc, ex_order, no_tolerances, ex_step, ex_accept, ex_dense,
-  ex_samples, ex_free
+  ex_samples, ex_degree, ex_free
 };
 
 /* ------------------------------------------------------------ midpoint */
@@ -198,10 +201,11 @@ mid_order (const void *st, int *est)
 }
 
 static int mid_samples (const void *st) { (void) st; return 0; }
+static int mid_degree (const void *st) { (void) st; return 3; }
 
 const sym_stepper_type drv_mid_type = {
   "midpoint", mid_alloc, mid_order, no_tolerances, mid_step, mid_accept,
-  mid_dense, mid_samples, ex_free
+  mid_dense, mid_samples, mid_degree, ex_free
 };
 
 /* ------------------------------------------------------------ sinks */

@@ -46,6 +46,8 @@ typedef struct {
   int *kfound;
   /* output */
   int iout;                /* next requested output time (ntout > 2) */
+  int nd;                  /* dense samples inside a step (dense_out) */
+  double *yd;              /* their values and the ends', n x (nd + 2) */
 } sym_run;
 
 /* ---------------------------------------------------------------- control */
@@ -83,5 +85,7 @@ int sym_emit (sym_run *r, double t, const double *y);
    terminal event's time, or NAN) */
 int sym_output_step (sym_run *r, double t, double h, double tnew,
                      const double *ynew, double tstop);
+/* The dense output of the accepted step (t, tnew] to the dense sink */
+int sym_output_dense (sym_run *r, double t, double tnew);
 
 #endif

@@ -88,9 +88,12 @@ run_alloc (sym_run *r)
     return st;
   r->ns = r->ne && r->type->dense_samples
           ? r->type->dense_samples (r->state) : 0;
+  r->nd = r->o->dense_out ? r->type->dense_degree (r->state) - 1 : 0;
+  if (r->nd < 0)
+    r->nd = 0;
   const int ns = r->ns;
-  double *w = sym_calloc ((size_t) 7 * n + (7 + (size_t) ns) * ne + 1,
-                          sizeof (double));
+  double *w = sym_calloc ((size_t) (9 + r->nd) * n
+                          + (7 + (size_t) ns) * ne + 1, sizeof (double));
   int *iw = sym_calloc ((size_t) 3 * ne + 1, sizeof (int));
   r->y = w;
   r->term = iw;
@@ -108,6 +111,7 @@ run_alloc (sym_run *r)
   r->vcb = r->vca + ne;
   r->tcand = r->vcb + ne;
   r->vs = r->tcand + ne;
+  r->yd = r->vs + (size_t) ns * ne;     /* n (nd + 2) */
   r->edir = iw + ne;
   r->kfound = iw + 2 * ne;
   return SYM_SUCCESS;
@@ -289,7 +293,9 @@ commit (sym_run *r, double hs, double tnew, int last, double err)
   r->ev.st.cnt.nsteps++;
   r->k++;
   double tstop = NAN;
-  int st;
+  int st = sym_output_dense (r, r->t, tnew);
+  if (st)
+    return st;
   if (r->ne && r->o->events)
     {
       st = sym_run_events (r, tnew, r->ynew, r->vnew);
@@ -399,7 +405,7 @@ sym_integrate (const sym_stepper_type *type, const sym_system *sys,
   if (mopts)
     r.mo = *mopts;
   r.mo.want_dense = r.mo.want_dense || o->ntout > 2 || o->refine > 1
-                    || o->nevents > 0;
+                    || o->nevents > 0 || o->dense_out;
   sym_eval_init (&r.ev, sys);
   if (! (result = run_alloc (&r)))
     {

@@ -8,6 +8,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
 int
 sym_emit (sym_run *r, double t, const double *y)
@@ -102,3 +103,23 @@ sym_fixed_end (const sym_driver_opts *o)
   return best <= tol ? snap : tend;
 }
 
+int
+sym_output_dense (sym_run *r, double t, double tnew)
+{
+  const int n = r->n, nd = r->nd;
+  const double pi = 3.14159265358979323846;
+  if (! r->o->dense_out)
+    return SYM_SUCCESS;
+  memcpy (r->yd, r->y, (size_t) n * sizeof (double));
+  for (int i = 1; i <= nd; i++)
+    {
+      const double th = 0.5 * (1.0 - cos (pi * i / (nd + 1)));
+      int st = r->type->dense (r->state, &r->ev, t + th * (tnew - t),
+                               r->yd + (size_t) i * n);
+      if (st)
+        return st;
+    }
+  memcpy (r->yd + (size_t) (nd + 1) * n, r->ynew, (size_t) n * sizeof (double));
+  return r->o->dense_out (t, tnew, nd, r->yd, r->o->dense_user) < 0
+         ? SYM_EOUTPUT : SYM_SUCCESS;
+}

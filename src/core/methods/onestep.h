@@ -242,6 +242,7 @@ int sym_onestep_set_tolerances (void *state, const sym_tolerances *tol);
 void sym_onestep_accept (void *state);
 int sym_onestep_dense (void *state, sym_eval *ev, double t, double *y);
 int sym_onestep_dense_samples (const void *state);
+int sym_onestep_dense_degree (const void *state);
 void sym_onestep_free (void *state);
 
 #endif

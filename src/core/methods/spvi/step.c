@@ -419,9 +419,22 @@ spvi_dense_samples (const void *state)
   return s->m;
 }
 
+/* the pairs n - 1 = m: the integral of the polynomial through the M + 2
+   values of dy/dz (M the nodes of the solve the run advances with),
+   degree M + 2; the others: the cubic Hermite interpolant, or q of degree
+   n - 1 and p of degree m + 1 */
+static int
+spvi_dense_degree (const void *state)
+{
+  const spvi_state *s = state;
+  const int M = s->adaptive ? s->m + 1 : s->m;
+  int deg = s->n - 1 > s->m + 1 ? s->n - 1 : s->m + 1;
+  return s->n - 1 == s->m ? M + 2 : deg > 3 ? deg : 3;
+}
+
 static const sym_stepper_type spvi_type = {
   "spvi", spvi_alloc, spvi_order, spvi_set_tolerances, spvi_step,
-  spvi_accept, spvi_dense, spvi_dense_samples, spvi_free
+  spvi_accept, spvi_dense, spvi_dense_samples, spvi_dense_degree, spvi_free
 };
 
 const sym_stepper_type *const sym_step_spvi = &spvi_type;
