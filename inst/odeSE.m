@@ -51,20 +51,26 @@
 ## @var{tspan} is [t0, tf] (a row at every step) or more times (rows
 ## exactly there, from the dense output, steps unchanged); tf < t0 runs
 ## backwards.  @var{opts} comes from @code{symplecticset} or
-## @code{odeset} ([] for the defaults); @var{par1}, @dots{} are passed to
-## @var{fcn} and the other functions after t and y.  @var{t} is a column
+## @code{odeset} ([] for the defaults); an option no solver knows is
+## said, with the nearest known name.  @var{par1}, @dots{} are passed to
+## @var{fcn} and the other functions after t and y; without @var{opts}
+## they may follow @var{y0} directly (the 2013 form
+## @code{odeSE (fcn, tspan, y0, par1, @dots{})}).  @var{t} is a column
 ## and @var{y} has a row per time.  @var{sol} has the fields of
-## @code{ode45}: x, y, solver, xe, ye, ie (with Events) and stats.  With
-## no output the solution is plotted with @code{odeplot}.
+## @code{ode45}: x, y, solver, xe, ye, ie (with Events) and stats; with
+## @code{Dense} @qcode{"on"} also the dense output that @code{symdeval}
+## evaluates, with @code{Hamiltonian} the values H of H at x.  With no
+## output the solution is plotted with @code{odeplot}.
 ##
 ## @table @code
 ## @item TimeStepSize, TimeStepNumber
 ## Fixed step h, or a number of fixed steps.  The last step ends on tf.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
 ## Adaptive steps, as in @code{ode45} (defaults 1e-3, 1e-6, off,
-## automatic, |tf-t0|/10).  The error estimate is the distance to the
-## trapezoidal rule through the step's ends.
-## @item Separable
+## automatic, |tf-t0|/10); given with a fixed step they are ignored, with
+## a warning.  The error estimate is the distance to the trapezoidal rule
+## through the step's ends.
+## @item Separable (alias Explicit)
 ## @qcode{"on"} for H = T(p) + V(q), with no forcing that depends on p.
 ## An @var{fcn} that shows otherwise gets a warning.  Default
 ## @qcode{"off"}.
@@ -81,8 +87,17 @@
 ## As in @code{ode45}.  Events are located on the dense output (cubic
 ## Hermite between the step points); two zeros between two step points
 ## are missed, as in @code{ode45} (a shorter step closes the gap).
-## @code{Refine} (default 1: step points only) adds interpolated rows.
-## @code{Stats} prints the counts that @code{sol.stats} holds.
+## @code{Refine} adds interpolated rows: by default 4 rows per step of an
+## adaptive run, as @code{ode45}, and the step points alone (the grid of
+## h) with a fixed step.  @code{Stats} prints the counts that
+## @code{sol.stats} holds.
+## @item Hamiltonian
+## A handle @code{H (t, y, par1, @dots{})}: @code{sol.H} holds its values
+## at @code{sol.x}, and @code{sol.stats.max_dH} and @code{Stats} the
+## largest relative change from H(t0) (absolute if H(t0) = 0).
+## @item Dense
+## @qcode{"on"}: @var{sol} keeps each step's dense output, for
+## @code{symdeval}.
 ## @item MaxSteps
 ## Largest number of steps of a run (default: no limit).
 ## @end table
@@ -104,7 +119,7 @@
 ##         max (dE(t <= 100)), max (dE(t >= 900)));
 ## @end group
 ## @end example
-## @seealso{odeSV, odeSPVI, symplecticset, ode45, odeset, odeplot}
+## @seealso{symdeval, odeSV, odeSPVI, symplecticset, ode45, odeset, odeplot}
 ## @end deftypefn
 
 function varargout = odeSE (varargin)

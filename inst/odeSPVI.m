@@ -46,7 +46,8 @@
 ##
 ## @table @code
 ## @item Nodes (alias P_DoFs), Q_DoFs, PolynomialDegree
-## m, 1 to 40 (default 3); n, 2 to min(2m, 41) (default m+1).
+## m, 1 to 40 (default 3); n, 2 to min(2m, 41) (default m+1); the
+## degree 1 to 39.
 ## @code{PolynomialDegree} sets n = degree+1, and m = degree+1 unless
 ## Nodes is given.
 ## @item TimeStepSize, TimeStepNumber
@@ -76,11 +77,12 @@
 ## fastest form for long runs.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}, on the method's own dense output.
-## @code{Refine} defaults to 1 (step points only).  The Events function
-## is also evaluated at Nodes points inside each step, so that a pair of
-## zeros inside one long step is found.
-## @item MaxSteps
-## Largest number of steps of a run (default: no limit).
+## @code{Refine} defaults to 4 rows per step of an adaptive run, to the
+## step points with a fixed step.  The Events function is also evaluated
+## at Nodes points inside each step, so that a pair of zeros inside one
+## long step is found.
+## @item Hamiltonian, Dense, MaxSteps
+## As in @code{odeSE}.
 ## @end table
 ##
 ## A run that cannot go on warns, with an identifier
@@ -105,7 +107,7 @@
 ##         max (abs (H(t <= 20*pi) + 0.5)), max (abs (H(t >= 180*pi) + 0.5)));
 ## @end group
 ## @end example
-## @seealso{odeSE, odeSV, symplecticset, ode45, odeset, odeplot}
+## @seealso{symdeval, odeSE, odeSV, symplecticset, ode45, odeset, odeplot}
 ## @end deftypefn
 
 function varargout = odeSPVI (varargin)

@@ -63,7 +63,7 @@
 ## automatic, |tf-t0|/10).  The error estimate is the distance to the
 ## trapezoidal rule through the step's ends plus that rule's own leading
 ## error term, so that it holds in q and in p.
-## @item Separable
+## @item Separable (alias Explicit)
 ## @qcode{"on"}: explicit leapfrog (above); a warning when @var{fcn}
 ## shows that dH/dp depends on q (or t).  Default @qcode{"off"}.
 ## @item Jacobian, HamiltonianHessFcn
@@ -77,11 +77,11 @@
 ## row of times; finite-difference matrices then take one call.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}, on the dense output (cubic Hermite between the
-## step points).  @code{Refine} (default 1: step points only) adds
-## interpolated rows; @code{Stats} prints the counts of
-## @code{sol.stats}.
-## @item MaxSteps
-## Largest number of steps of a run (default: no limit).
+## step points).  @code{Refine} adds interpolated rows (by default 4 per
+## step of an adaptive run, none with a fixed step); @code{Stats} prints
+## the counts of @code{sol.stats}.
+## @item Hamiltonian, Dense, MaxSteps
+## As in @code{odeSE}.
 ## @end table
 ##
 ## A run that cannot go on warns, with an identifier
@@ -105,7 +105,7 @@
 ## xlabel ("periods");  ylabel ("H(t) - H(0)");
 ## @end group
 ## @end example
-## @seealso{odeSE, odeSPVI, symplecticset, ode45, odeset, odeplot}
+## @seealso{symdeval, odeSE, odeSPVI, symplecticset, ode45, odeset, odeplot}
 ## @end deftypefn
 
 function varargout = odeSV (varargin)

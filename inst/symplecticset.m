@@ -70,7 +70,18 @@
 ## @qcode{"kept"}.  Pairs other than Q_DoFs = Nodes+1 keep their matrix.
 ## @item MaxSteps
 ## Largest number of steps of a run.  Default: no limit.
+## @item Hamiltonian
+## Handle @code{H (t, y, @dots{})}: its values at @code{sol.x} come back
+## in @code{sol.H}, their largest relative change in
+## @code{sol.stats.max_dH} and in @code{Stats}.
+## @item Dense
+## @qcode{"on"}: @code{sol} keeps each step's dense output, which
+## @code{symdeval} evaluates at any time.  Default @qcode{"off"}.
 ## @end table
+##
+## @code{Explicit}, the 2013 odepkg name of @code{Separable}, is accepted
+## too.  A name that neither @code{odeset} nor this package knows gets a
+## warning with the nearest known name, and is kept in the result.
 ##
 ## Arguments are taken in order, a later value of a name replacing an
 ## earlier one; a field of a struct replaces only when it is not empty (as
@@ -92,15 +103,17 @@
 ## [t, y] = odeSPVI (@@(t, y) [y(2); -sin(y(1))], [0 10], [1; 0], opts);
 ## @end group
 ## @end example
-## @seealso{odeset, odeget, odeSPVI, odeSE, odeSV}
+## @seealso{odeset, odeget, odeSPVI, odeSE, odeSV, symdeval}
 ## @end deftypefn
 
 function opts = symplecticset (varargin)
 
   persistent fields = {"TimeStepSize", "TimeStepNumber", "Q_DoFs", ...
                        "Nodes", "P_DoFs", "PolynomialDegree", ...
-                       "HamiltonianHessFcn", "Separable", "NewtonTol", ...
-                       "MaxNewtonIterations", "NewtonMatrix", "MaxSteps"};
+                       "HamiltonianHessFcn", "Separable", "Explicit", ...
+                       "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
+                       "MaxSteps", "Hamiltonian", "Dense"};
+  persistent odeset_fields = fieldnames (odeset ());
 
   if (nargin == 0 && nargout == 0)
     odeset ();
@@ -116,6 +129,8 @@ function opts = symplecticset (varargin)
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");
     printf ("       NewtonMatrix:  {[\"auto\"], \"kept\", \"new\"}\n");
     printf ("           MaxSteps:  integer, >0, [] (no limit)\n");
+    printf ("        Hamiltonian:  function handle, []\n");
+    printf ("              Dense:  {[\"off\"], \"on\"}\n");
     return;
   endif
 
@@ -160,8 +175,19 @@ function opts = symplecticset (varargin)
     endif
   endwhile
 
-  pairs = [names; vals];
+  ## a name neither odeset nor the package knows: said with the nearest
+  ## known name, and kept in the result (the solvers say it again)
+  known = ismember (lower (names), lower (odeset_fields));
+  for k = find (! known)
+    hint = nearest_name (names{k}, [odeset_fields(:); fields(:)]);
+    warning ("symplectic:unknown-option",
+             "symplecticset: unknown option %s%s", names{k}, hint);
+  endfor
+  pairs = [names(known); vals(known)];
   opts = odeset (pairs{:});
+  for k = find (! known)
+    opts.(names{k}) = vals{k};
+  endfor
   for k = 1:numel (fields)
     if (isfield (ours, fields{k}))
       opts.(fields{k}) = ours.(fields{k});
@@ -175,6 +201,35 @@ endfunction
 ## Set option NAME to V: a package field in OURS (canonical name), any
 ## other in the pairs NAMES/VALS (one entry per name, case-insensitive).
 ## From a struct (always = false) an empty V only fills a name not yet set.
+## "; did you mean NAME?" for the known name nearest to name (edit
+## distance without regard to case, at most 2 or a third of its length),
+## or ""
+function hint = nearest_name (name, known)
+  hint = "";
+  best = Inf;
+  a = lower (name);
+  for k = 1:numel (known)
+    b = lower (known{k});
+    d = 0:numel (b);
+    for i = 1:numel (a)
+      prev = d;
+      d(1) = i;
+      for j = 1:numel (b)
+        d(j+1) = min ([prev(j+1) + 1, d(j) + 1, prev(j) + (a(i) != b(j))]);
+      endfor
+    endfor
+    if (d(end) < best)
+      best = d(end);
+      hint = known{k};
+    endif
+  endfor
+  if (best <= 2 || 3 * best <= numel (hint))
+    hint = sprintf ("; did you mean %s?", hint);
+  else
+    hint = "";
+  endif
+endfunction
+
 function [ours, names, vals] = put (ours, names, vals, fields, name, v, always)
   j = find (strcmpi (name, fields), 1);
   if (! isempty (j))
@@ -210,6 +265,18 @@ endfunction
 %! assert (opts.RelTol, 1e-5);
 %! assert (isempty (opts.Nodes));
 %! assert (isfield (opts, "AbsTol"));
+
+%!test
+%! ## a typo: said in the package's name, with the nearest option
+%! lastwarn ("");
+%! opts = symplecticset ("Nodse", 3);
+%! [msg, id] = lastwarn ();
+%! assert (id, "symplectic:unknown-option");
+%! assert (msg, "symplecticset: unknown option Nodse; did you mean Nodes?");
+%! assert (opts.Nodse, 3);
+%! lastwarn ("");
+%! opts = symplecticset ("Zzzzzz", 1);
+%! assert (lastwarn (), "symplecticset: unknown option Zzzzzz");
 
 %!test
 %! ## no warning for the package's names

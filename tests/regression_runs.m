@@ -27,7 +27,7 @@ function runs = regression_runs ()
   tols = {1e-4, 1e-6, 1e-8};
   adatol = @(i, varargin) symplecticset ("RelTol", tols{i},
                                          "AbsTol", tols{i} / 100,
-                                         varargin{:});
+                                         "Refine", 1, varargin{:});
   tout = linspace (0, 4*T, 11);
   runs = struct ("name", {}, "solver", {}, "fcn", {}, "tspan", {},
                  "y0", {}, "opts", {}, "nout", {}, "fixed", {});

@@ -291,8 +291,10 @@
 %!     assert ([t, y], [t0, y0d]);
 %!   endfor
 %! endfor
-%!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct from odeset or symplecticset \\(or a plain 1x1 struct\\), got 1x1 double", f, [0 1], y0, 5);
-%!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct .*got 1x6 char", f, [0 1], y0, "RelTol");
+## a fourth argument that is not a struct is FCN's first parameter (the
+## 2013 form): an FCN of (t, y) alone is told so
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN takes 2 arguments, but is called as FCN \\(t, y, p1\\): a parameter follows Y0 or OPTS$", f, [0 1], y0, 5);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN takes 2 arguments, but is called as FCN \\(t, y, p1, p2\\): 2 parameters follow Y0 or OPTS$", f, [0 1], y0, "RelTol", 2);
 %!test check_bad (all3, "Octave:invalid-input-arg", "OPTS must be a struct .*got 1x2 struct", f, [0 1], y0, struct ("RelTol", {1e-3, 1e-4}));
 %!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive finite scalar, got -1", f, [0 1], y0, struct ("RelTol", -1));
 %!test check_bad (all3, "Octave:invalid-input-arg", "RelTol must be a positive finite scalar, got 0", f, [0 1], y0, struct ("RelTol", 0));

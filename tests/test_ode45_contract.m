@@ -398,9 +398,9 @@
 %! ## slow oscillator, whose steps at the default tolerances are longer)
 %! f = @(t, y) [y(2); -1e-4 * y(1)];
 %! for i = 2:3      # odeSE's steps (at most 4) stay below the cap anyway
-%!   [t1, ~] = solvers{i} (f, [0 100], [1; 0]);
-%!   [t2, ~] = solvers{i} (f, [0 100], [1; 0], odeset ("MaxStep", Inf));
-%!   [t3, ~] = solvers{i} (f, [0 100], [1; 0], odeset ("MaxStep", 5));
+%!   [t1, ~] = solvers{i} (f, [0 100], [1; 0], odeset ("Refine", 1));
+%!   [t2, ~] = solvers{i} (f, [0 100], [1; 0], odeset ("MaxStep", Inf, "Refine", 1));
+%!   [t3, ~] = solvers{i} (f, [0 100], [1; 0], odeset ("MaxStep", 5, "Refine", 1));
 %!   assert (max (diff (t1)), 10, 1e-12);
 %!   assert (max (diff (t2)) > 15);
 %!   assert (max (diff (t3)), 5, 1e-12);
@@ -414,7 +414,7 @@
 %! f = @(t, y) [y(2); 0];     # a free particle: MaxStep binds
 %! for i = 1:3
 %!   for t0 = [0, 1e8]
-%!     [t, ~] = solvers{i} (f, [t0, t0+1], [0; 1], odeset ("MaxStep", 1e-4));
+%!     [t, ~] = solvers{i} (f, [t0, t0+1], [0; 1], odeset ("MaxStep", 1e-4, "Refine", 1));
 %!     assert (numel (t), 10001);
 %!     assert (t(end), t0 + 1);
 %!     assert (min (diff (t)) > 0.99e-4);
@@ -427,14 +427,14 @@
 %! f = @(t, y) [y(2); -1e-4 * y(1)];
 %! for i = 1:3
 %!   ## the default cap |tf-t0|/10
-%!   [t1, y1] = solvers{i} (f, [0 100], [1; 0], odeset ("InitialStep", Inf));
-%!   [t2, y2] = solvers{i} (f, [0 100], [1; 0], odeset ("InitialStep", 10));
+%!   [t1, y1] = solvers{i} (f, [0 100], [1; 0], odeset ("InitialStep", Inf, "Refine", 1));
+%!   [t2, y2] = solvers{i} (f, [0 100], [1; 0], odeset ("InitialStep", 10, "Refine", 1));
 %!   assert (isequal (t1, t2) && isequal (y1, y2));
 %!   if (i > 1)    # odeSE's (order 1) first step of 10 fails; it is shortened
 %!     assert (t1(2), 10);
 %!   endif
 %!   ## no cap: the span, backwards too
-%!   o = odeset ("InitialStep", Inf, "MaxStep", Inf);
+%!   o = odeset ("InitialStep", Inf, "MaxStep", Inf, "Refine", 1);
 %!   [t1, y1] = solvers{i} (f, [0 -2], [1; 0], o);
 %!   [t2, y2] = solvers{i} (f, [0 -2], [1; 0], odeset (o, "InitialStep", 2));
 %!   assert (isequal (t1, t2) && isequal (y1, y2));
@@ -568,11 +568,11 @@
 %!   endif
 %! endfor
 %! out = __makeinfo__ (get_help_text ("odeSE"), "plain text");
-%! assert (! isempty (regexp (out, "Refine'?\\s+\\(default\\s+1:\\s+step\\s+points\\s+only")));
+%! assert (! isempty (regexp (out, "by\\s+default\\s+4\\s+rows\\s+per\\s+step\\s+of\\s+an\\s+adaptive\\s+run")));
 %! assert (! isempty (strfind (out, "odeplot")));
 %! assert (! isempty (strfind (out, "Vectorized")));
 %! out = __makeinfo__ (get_help_text ("odeSPVI"), "plain text");
-%! assert (! isempty (regexp (out, "Refine'?\\s+defaults\\s+to\\s+1\\s+\\(step\\s+points\\s+only")));
+%! assert (! isempty (regexp (out, "Refine'?\\s+defaults\\s+to\\s+4\\s+rows\\s+per\\s+step")));
 %! assert (! isempty (strfind (out, "Vectorized")));
 
 %!test

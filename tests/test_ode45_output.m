@@ -360,7 +360,7 @@
 %!       msg = err.message;
 %!     end_try_catch
 %!     if (k <= 2)
-%!       assert (msg, [name ": OutputFcn returned NaN as its stop flag at t = 0.10000000000000001"]);
+%!       assert (msg, [name ": OutputFcn returned NaN as its stop flag at t = 0.1"]);
 %!     else
 %!       pre = [name ": OutputFcn must return a logical or real numeric stop flag, got "];
 %!       assert (strncmp (msg, pre, numel (pre)));

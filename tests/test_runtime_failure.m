@@ -268,7 +268,7 @@
 %!test
 %! for s = all3
 %!   name = func2str (s{1});
-%!   [t, y, msg, id] = run_warn (s{1}, osc, [0 100], [1 0], struct ("MaxSteps", 10));
+%!   [t, y, msg, id] = run_warn (s{1}, osc, [0 100], [1 0], struct ("MaxSteps", 10, "Refine", 1));
 %!   assert (id, "symplectic:max-steps");
 %!   assert (regexp (msg, ['^' name ': MaxSteps reached at t = ']));
 %!   assert (rows (y), 11);

@@ -99,7 +99,11 @@ symmex_read_args (const char *name, int nlhs, int nrhs,
                        symmex_describe_fn (a->fcn, buf, sizeof buf));
   read_tspan (name, prhs[1], a);
   read_y0 (name, prhs[2], a);
-  a->opts = nrhs > 3 ? prhs[3] : NULL;
-  a->nextra = nrhs > 4 ? nrhs - 4 : 0;
-  a->extra = prhs + 4;
+  /* OPTS is a struct or []; anything else in its place is the first
+     parameter, as in the 2013 form NAME (fcn, tspan, y0, p1, ...) */
+  const int has_opts = nrhs > 3 && (mxIsStruct (prhs[3])
+                                    || mxIsEmpty (prhs[3]));
+  a->opts = has_opts ? prhs[3] : NULL;
+  a->nextra = nrhs > 3 ? nrhs - 3 - has_opts : 0;
+  a->extra = prhs + 3 + has_opts;
 }

@@ -38,10 +38,10 @@ symmex_checked (symmex_ctx *c, mxArray **pa, size_t k, const char *what,
       va_end (ap);
       if (a && mxIsComplex (a) && mxGetNumberOfElements (a) == k)
         mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s returned a complex value at "
-                           "t = %.17g; expected %s", c->solver, what, t,
+                           "t = %.15g; expected %s", c->solver, what, t,
                            expect);
       mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must return %s, got %s at "
-                         "t = %.17g", c->solver, what, expect,
+                         "t = %.15g", c->solver, what, expect,
                          a ? symmex_describe (a, buf, sizeof buf)
                          : "nothing", t);
     }
@@ -371,7 +371,7 @@ symmex_cb_events (double t, const double *y, double *value, int *isterminal,
   if (! out[1] || ! out[2])
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the Events function must return three "
                        "outputs [VALUE, ISTERMINAL, DIRECTION], got %d at "
-                       "t = %.17g", c->solver, out[0] ? (out[1] ? 2 : 1) : 0,
+                       "t = %.15g", c->solver, out[0] ? (out[1] ? 2 : 1) : 0,
                        t);
   const double *v = symmex_checked (c, &out[0], c->nevents,
                                     "the Events function", 1, t,
@@ -382,7 +382,7 @@ symmex_cb_events (double t, const double *y, double *value, int *isterminal,
   for (int i = 0; i < c->nevents; i++)
     if (isnan (v[i]))
       mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the Events function returned NaN in "
-                         "VALUE(%d) at t = %.17g", c->solver, i + 1, t);
+                         "VALUE(%d) at t = %.15g", c->solver, i + 1, t);
   memcpy (value, v, sizeof (double) * c->nevents);
   for (int k = 1; k < 3; k++)
     {
@@ -403,7 +403,7 @@ symmex_cb_events (double t, const double *y, double *value, int *isterminal,
           else
             mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the Events function must "
                                "return DIRECTION of -1, 0 or 1, got %s at "
-                               "t = %.17g", c->solver, SYMMEX_NUM (x, "%g"),
+                               "t = %.15g", c->solver, SYMMEX_NUM (x, "%g"),
                                t);
         }
     }

@@ -20,7 +20,10 @@ driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
   d->tf = a->tspan[a->ntspan - 1];
   d->tout = a->tspan;
   d->ntout = want_sol ? 2 : a->ntspan;
-  d->refine = (d->ntout > 2 || want_sol) ? 1 : o->refine;
+  /* Refine: ode45's 4 rows per adaptive step unless given, the user's
+     grid (step points) on fixed steps */
+  d->refine = (d->ntout > 2 || want_sol) ? 1
+              : o->refine ? o->refine : symmex_fixed (o) ? 1 : 4;
   d->h_fixed = o->h_fixed;
   d->nsteps_fixed = o->nsteps_fixed;
   d->tol.rtol = o->rtol;
@@ -36,6 +39,8 @@ driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
   d->event_out = symmex_sink_event;
   d->output = symmex_sink_row;
   d->output_user = c;
+  d->dense_out = want_sol && o->dense ? symmex_sink_dense : NULL;
+  d->dense_user = c;
 }
 
 void
@@ -80,9 +85,11 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   if (o.outputfcn)
     symmex_outputfcn (c, NULL, 0, NULL, "done");
   symmex_report (m, own, &o, &a, c, &st, status);
+  if (o.hamiltonian && (nlhs == 1 || o.stats))
+    symmex_energy (c);
   char jac_used[160];
   symmex_jac_used (c, &st, jac_used, sizeof jac_used);
   if (o.stats)
-    symmex_print_stats (&st, jac_used);
+    symmex_print_stats (&st, jac_used, c);
   symmex_outputs (m, own, c, &st, jac_used, nlhs, plhs);
 }

@@ -82,14 +82,14 @@ warn_newton (const symmex_method *m, const void *own, const symmex_opts *o,
   /* a NaN/Inf matrix also ends as a Newton failure: say so */
   char why[160] = "";
   if (c->nonfinite_what && strcmp (c->nonfinite_what, "FCN") != 0)
-    snprintf (why, sizeof why, " (%s returned NaN or Inf at t = %.17g)",
+    snprintf (why, sizeof why, " (%s returned NaN or Inf at t = %.15g)",
               c->nonfinite_what, c->nonfinite_t);
   const char *hint = ! why[0] && m->newton_hint ? m->newton_hint (own) : NULL;
   if (hint)
     snprintf (why, sizeof why, " (%s)", hint);
   mexWarnMsgIdAndTxt ("symplectic:newton-failed", "%s: Newton's method did "
-                      "not converge at t = %.17g %s%s; returning the "
-                      "solution up to t = %.17g", m->name, treached,
+                      "not converge at t = %.15g %s%s; returning the "
+                      "solution up to t = %.15g", m->name, treached,
                       symmex_fixed (o)
                       ? (hint ? "with the fixed step"
                          : "with the fixed step (try a smaller TimeStepSize)")
@@ -118,7 +118,7 @@ symmex_report (const symmex_method *m, const void *own,
       /* a stop on the last row ends nothing early: no warning */
       if (tlast != a->tspan[a->ntspan - 1])
         mexWarnMsgIdAndTxt ("symplectic:output-stop", "%s: OutputFcn asked "
-                            "to stop at t = %.17g; returning the solution up "
+                            "to stop at t = %.15g; returning the solution up "
                             "to there", name, tlast);
       break;
     case SYM_ENEWTON:
@@ -126,36 +126,38 @@ symmex_report (const symmex_method *m, const void *own,
       break;
     case SYM_ENONFINITE:
       mexWarnMsgIdAndTxt ("symplectic:nonfinite", "%s: %s returned NaN or "
-                          "Inf near t = %.17g and a smaller step did not "
-                          "help; returning the solution up to t = %.17g",
-                          name, c->nonfinite_what ? c->nonfinite_what
-                          : "FCN", st->fail_t, tlast);
+                          "Inf near t = %.15g %s; returning the solution up "
+                          "to t = %.15g", name, c->nonfinite_what
+                          ? c->nonfinite_what : "FCN", st->fail_t,
+                          symmex_fixed (o) ? "with the fixed step (try a "
+                          "smaller TimeStepSize)" : "and a smaller step did "
+                          "not help", tlast);
       break;
     case SYM_EOVERFLOW:
       mexWarnMsgIdAndTxt ("symplectic:nonfinite", "%s: the solution "
                           "overflowed (NaN or Inf) in the step from "
-                          "t = %.17g%s; returning the solution up to "
-                          "t = %.17g", name, treached, symmex_fixed (o)
+                          "t = %.15g%s; returning the solution up to "
+                          "t = %.15g", name, treached, symmex_fixed (o)
                           ? " (an unstable fixed step? try a smaller "
                             "TimeStepSize)" : " even with the smallest step",
                           tlast);
       break;
     case SYM_ESTEPSIZE:
       mexWarnMsgIdAndTxt ("symplectic:step-size", "%s: the step size became "
-                          "too small at t = %.17g; returning the solution up "
-                          "to t = %.17g", name, treached, tlast);
+                          "too small at t = %.15g; returning the solution up "
+                          "to t = %.15g", name, treached, tlast);
       break;
     case SYM_EMAXSTEPS:
       mexWarnMsgIdAndTxt ("symplectic:max-steps", "%s: MaxSteps reached at "
-                          "t = %.17g; returning the solution up to "
-                          "t = %.17g", name, treached, tlast);
+                          "t = %.15g; returning the solution up to "
+                          "t = %.15g", name, treached, tlast);
       break;
     case SYM_ENOMEM:
       mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory", name);
       break;
     case SYM_ECALLBACK:
       mexWarnMsgIdAndTxt ("symplectic:callback", "%s: a callback failed at "
-                          "t = %.17g; returning the solution up to there",
+                          "t = %.15g; returning the solution up to there",
                           name, st->fail_t);
       break;
     default:
@@ -166,7 +168,7 @@ symmex_report (const symmex_method *m, const void *own,
   if (st->sep_broken && m->sep_broken)
     mexWarnMsgIdAndTxt ("symplectic:not-separable", "%s: Separable is on, "
                         "but FCN is not of a separable H = T(p) + V(q) "
-                        "without p in the forcing: %s at t = %.17g; the "
+                        "without p in the forcing: %s at t = %.15g; the "
                         "explicit steps are then not the method (of lower "
                         "order, not symplectic): set Separable off", name,
                         m->sep_broken, st->sep_broken_t);
@@ -192,14 +194,15 @@ symmex_jac_used (const symmex_ctx *c, const sym_stats *st, char *buf,
 {
   if (st->jac_dropped)
     snprintf (buf, len, "%s, then finite differences of FCN from "
-              "t = %.17g", jac_source_name (c->jac_source),
+              "t = %.15g", jac_source_name (c->jac_source),
               st->jac_dropped_t);
   else
     snprintf (buf, len, "%s", jac_source_name (c->jac_source));
 }
 
 void
-symmex_print_stats (const sym_stats *st, const char *jac_used)
+symmex_print_stats (const sym_stats *st, const char *jac_used,
+                    const symmex_ctx *c)
 {
   const sym_counters *k = &st->cnt;
   mexPrintf ("Number of successful steps: %ld\n", k->nsteps);
@@ -212,47 +215,41 @@ symmex_print_stats (const sym_stats *st, const char *jac_used)
              ? ", calls that also give f" : "", k->nfd);
   mexPrintf ("Number of LU decompositions: %ld\n", k->nlu);
   mexPrintf ("Number of linear solves:     %ld\n", k->nsolve);
+  if (c->hbuf)
+    mexPrintf ("Largest relative change of H: %.3g\n", c->max_dh);
 }
 
 /* ------------------------------------------------------------ wrappers */
 
-/* See symmex.h: Octave prefixes "NAME: " to the messages of
-   mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt; drop ours so it shows once.
-   (A message that does not begin with the MEX function's name is passed on
-   as it is.)  From here on the two names are Octave's own functions. */
-#undef mexErrMsgIdAndTxt
-#undef mexWarnMsgIdAndTxt
-
-/* The message of fmt into msg, without its leading "NAME: " */
-static const char *
-own_message (char *msg, size_t len, const char *fmt, va_list ap)
+/* See symmex.h.  The message goes out through Octave's own error and
+   warning, so that it reads as the solver wrote it, whatever the MEX
+   function is called. */
+static void
+raise (const char *fn, const char *id, const char *fmt, va_list ap)
 {
-  vsnprintf (msg, len, fmt, ap);
-  const char *fn = mexFunctionName ();
-  size_t k = fn ? strlen (fn) : 0;
-  if (k && strncmp (msg, fn, k) == 0 && msg[k] == ':' && msg[k + 1] == ' ')
-    return msg + k + 2;
-  return msg;
+  char msg[2048];
+  vsnprintf (msg, sizeof msg, fmt, ap);
+  mxArray *args[3] = { mxCreateString (id), mxCreateString ("%s"),
+                       mxCreateString (msg) };
+  mexCallMATLAB (0, NULL, 3, args, fn);
+  for (int i = 0; i < 3; i++)
+    mxDestroyArray (args[i]);
 }
 
 void
 symmex_err (const char *id, const char *fmt, ...)
 {
-  char msg[2048];
   va_list ap;
   va_start (ap, fmt);
-  const char *m = own_message (msg, sizeof msg, fmt, ap);
+  raise ("error", id, fmt, ap);
   va_end (ap);
-  mexErrMsgIdAndTxt (id, "%s", m);
 }
 
 void
 symmex_warn (const char *id, const char *fmt, ...)
 {
-  char msg[2048];
   va_list ap;
   va_start (ap, fmt);
-  const char *m = own_message (msg, sizeof msg, fmt, ap);
+  raise ("warning", id, fmt, ap);
   va_end (ap);
-  mexWarnMsgIdAndTxt (id, "%s", m);
 }

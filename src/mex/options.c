@@ -121,9 +121,9 @@ symmex_on_off (const char *solver, const mxArray *v, const char *name)
       char buf[8];
       if (mxGetString (v, buf, sizeof buf) == 0)
         {
-          if (name_eq (buf, "on"))
+          if (name_eq (buf, "on") || name_eq (buf, "yes"))
             return 1;
-          if (name_eq (buf, "off"))
+          if (name_eq (buf, "off") || name_eq (buf, "no"))
             return 0;
         }
     }
@@ -293,7 +293,7 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   if ((v = symmex_field (solver, opts, "OutputSel")))
     parse_outputsel (solver, v, n, o);
   o->refine = (v = symmex_field (solver, opts, "Refine"))
-              ? (int) symmex_integer (solver, v, "Refine", 1, 1000000) : 1;
+              ? (int) symmex_integer (solver, v, "Refine", 1, 1000000) : 0;
   o->stats = (v = symmex_field (solver, opts, "Stats"))
              ? symmex_on_off (solver, v, "Stats") : 0;
   o->vectorized = (v = symmex_field (solver, opts, "Vectorized"))
@@ -301,6 +301,9 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   if ((v = symmex_field (solver, opts, "Jacobian")))
     o->jacobian = parse_jacobian (solver, v, n);
   o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");
+  o->hamiltonian = function_opt (solver, opts, "Hamiltonian");
+  o->dense = (v = symmex_field (solver, opts, "Dense"))
+             ? symmex_on_off (solver, v, "Dense") : 0;
   parse_steps (solver, opts, o);
 
   /* odeset fields that would change the problem solved: not taken (a
@@ -402,10 +405,127 @@ check_steps (const char *name, const symmex_args *a, symmex_opts *o)
     }
 }
 
+/* The options a solver knows: odeset's (Octave 7), the package's common
+   ones, every method's own (and Explicit, odepkg's name of Separable) */
+static const char *const odeset_names[] = {
+  "AbsTol", "BDF", "Events", "InitialSlope", "InitialStep", "JConstant",
+  "JPattern", "Jacobian", "MStateDependence", "Mass", "MassSingular",
+  "MaxOrder", "MaxStep", "MvPattern", "NonNegative", "NormControl",
+  "OutputFcn", "OutputSel", "Refine", "RelTol", "Stats", "Vectorized", NULL
+};
+static const char *const common_names[] = {
+  "TimeStepSize", "TimeStepNumber", "HamiltonianHessFcn", "NewtonTol",
+  "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", NULL
+};
+
+/* The edit distance of a and b, without regard to case */
+static int
+distance (const char *a, const char *b)
+{
+  int la = (int) strlen (a), lb = (int) strlen (b), row[64];
+  if (la >= 64 || lb >= 64)
+    return 64;
+  for (int j = 0; j <= lb; j++)
+    row[j] = j;
+  for (int i = 1; i <= la; i++)
+    {
+      int diag = row[0];
+      row[0] = i;
+      for (int j = 1; j <= lb; j++)
+        {
+          int up = row[j];
+          int cost = tolower ((unsigned char) a[i - 1])
+                     != tolower ((unsigned char) b[j - 1]);
+          int best = diag + cost;
+          if (up + 1 < best)
+            best = up + 1;
+          if (row[j - 1] + 1 < best)
+            best = row[j - 1] + 1;
+          row[j] = best;
+          diag = up;
+        }
+    }
+  return row[lb];
+}
+
+/* name among list: 1; else its nearest in list into *near, at *dist */
+static int
+known_in (const char *name, const char *const *list, const char **near,
+          int *dist)
+{
+  for (int i = 0; list[i]; i++)
+    {
+      if (name_eq (name, list[i]))
+        return 1;
+      int d = distance (name, list[i]);
+      if (d < *dist)
+        {
+          *dist = d;
+          *near = list[i];
+        }
+    }
+  return 0;
+}
+
+/* A field of OPTS that no solver knows (a typo in a plain struct: odeset
+   warns for its own) is said, with the nearest known name */
+static void
+check_names (const char *solver, const mxArray *opts)
+{
+  static const char *const alias[] = { "Explicit", NULL };
+  const int nf = opts && mxIsStruct (opts) ? mxGetNumberOfFields (opts) : 0;
+  for (int i = 0; i < nf; i++)
+    {
+      const char *name = mxGetFieldNameByNumber (opts, i);
+      const mxArray *v = mxGetFieldByNumber (opts, 0, i);
+      if (! v || mxIsEmpty (v))
+        continue;
+      const char *near = NULL;
+      int dist = 64, known = known_in (name, odeset_names, &near, &dist)
+                             || known_in (name, common_names, &near, &dist)
+                             || known_in (name, alias, &near, &dist);
+      for (int k = 0; ! known && symmex_methods[k]; k++)
+        known = known_in (name, symmex_methods[k]->option_names, &near,
+                          &dist);
+      if (known)
+        continue;
+      if (near && (dist <= 2 || 3 * dist <= (int) strlen (near)))
+        mexWarnMsgIdAndTxt ("symplectic:unknown-option", "%s: unknown "
+                            "option %s is ignored; did you mean %s?",
+                            solver, name, near);
+      else
+        mexWarnMsgIdAndTxt ("symplectic:unknown-option", "%s: unknown "
+                            "option %s is ignored", solver, name);
+    }
+}
+
+/* The options of adaptive steps given with fixed ones: said, as they do
+   nothing there */
+static void
+check_fixed (const char *solver, const mxArray *opts, const symmex_opts *o)
+{
+  static const char *const adaptive[] = { "RelTol", "AbsTol", "NormControl",
+                                          "InitialStep", "MaxStep", NULL };
+  char list[128] = "";
+  if (! symmex_fixed (o))
+    return;
+  for (int k = 0; adaptive[k]; k++)
+    if (symmex_field (solver, opts, adaptive[k]))
+      snprintf (list + strlen (list), sizeof list - strlen (list), "%s%s",
+                list[0] ? ", " : "", adaptive[k]);
+  if (list[0])
+    mexWarnMsgIdAndTxt ("symplectic:ignored-option", "%s: %s of adaptive "
+                        "steps are ignored with a fixed step (TimeStepSize "
+                        "or TimeStepNumber)", solver, list);
+}
+
 void
 symmex_parse_options (const char *solver, const symmex_args *a,
                       symmex_opts *o)
 {
+  const mxArray *opts = a->opts && ! mxIsEmpty (a->opts) ? a->opts : NULL;
   parse_common (solver, a->opts, a->n, o);
+  check_names (solver, opts);
+  check_fixed (solver, opts, o);
   check_steps (solver, a, o);
 }

@@ -22,7 +22,7 @@ stop_flag (symmex_ctx *c, mxArray **pa, double t)
   if (! (mxIsNumeric (a) || mxIsLogical (a) || mxIsChar (a))
       || mxIsComplex (a))
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: OutputFcn must return a logical or "
-                       "real numeric stop flag, got %s at t = %.17g",
+                       "real numeric stop flag, got %s at t = %.15g",
                        c->solver, symmex_describe (a, buf, sizeof buf), t);
   size_t k = mxGetNumberOfElements (a);
   /* logical (the usual false) and char without a call of double () */
@@ -39,7 +39,7 @@ stop_flag (symmex_ctx *c, mxArray **pa, double t)
     {
       if (isnan (v[i]))
         mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: OutputFcn returned NaN as its stop "
-                           "flag at t = %.17g", c->solver, t);
+                           "flag at t = %.15g", c->solver, t);
       if (v[i] == 0.0)
         stop = 0;
     }
@@ -121,6 +121,52 @@ symmex_sink_event (double te, const double *ye, int ie, void *user)
   return 0;
 }
 
+int
+symmex_sink_dense (double t, double tnew, int k, const double *y, void *user)
+{
+  symmex_ctx *c = user;
+  const size_t per = (size_t) c->n * (k + 2);
+  if (c->nsteps == c->dcap)
+    {
+      c->dcap = c->dcap ? 2 * c->dcap : 256;
+      c->dt = mxRealloc (c->dt, sizeof (double) * 2 * c->dcap);
+      c->dy = mxRealloc (c->dy, sizeof (double) * c->dcap * per);
+    }
+  c->dk = k;
+  c->dt[2 * c->nsteps] = t;
+  c->dt[2 * c->nsteps + 1] = tnew;
+  memcpy (c->dy + c->nsteps * per, y, sizeof (double) * per);
+  c->nsteps++;
+  return 0;
+}
+
+void
+symmex_energy (symmex_ctx *c)
+{
+  const int n = c->n;
+  mxArray **args = mxCalloc (c->nargs, sizeof (mxArray *));
+  memcpy (args, c->args, sizeof (mxArray *) * c->nargs);
+  args[0] = (mxArray *) c->o->hamiltonian;
+  char name[64];
+  symmex_direct_name (args[0], name, sizeof name);
+  c->hbuf = mxMalloc (sizeof (double) * (c->nrows + 1));
+  c->max_dh = 0.0;
+  for (size_t r = 0; r < c->nrows; r++)
+    {
+      mxArray *out[1] = { NULL };
+      mxGetPr (args[1])[0] = c->tbuf[r];
+      memcpy (mxGetPr (args[2]), c->ybuf + r * n, sizeof (double) * n);
+      symmex_call (1, out, c->nargs, args, name);
+      c->hbuf[r] = symmex_checked (c, out, 1, "the Hamiltonian", 0,
+                                   c->tbuf[r], "a real scalar")[0];
+      mxDestroyArray (out[0]);
+      const double h0 = c->hbuf[0], dh = fabs (c->hbuf[r] - h0);
+      const double rel = h0 != 0.0 ? dh / fabs (h0) : dh;
+      if (rel > c->max_dh || isnan (rel))
+        c->max_dh = rel;
+    }
+}
+
 static mxArray *
 rows_matrix (const double *buf, size_t nrows, int n)
 {
@@ -179,6 +225,36 @@ stats_struct (const sym_counters *k, const char *jac_source)
 
 
 static mxArray *
+row_of (const double *v, size_t k)
+{
+  mxArray *a = mxCreateDoubleMatrix (1, k, mxREAL);
+  if (k)
+    memcpy (mxGetPr (a), v, sizeof (double) * k);
+  return a;
+}
+
+/* sol.dense: t (2 x steps, each step's start and end) and y (n x (k + 2)
+   x steps, each step's dense output at its Chebyshev-Lobatto points) */
+static mxArray *
+dense_struct (const symmex_ctx *c)
+{
+  const char *fields[] = { "t", "y" };
+  mxArray *d = mxCreateStructMatrix (1, 1, 2, fields);
+  mxArray *t = mxCreateDoubleMatrix (2, c->nsteps, mxREAL);
+  if (c->nsteps)
+    memcpy (mxGetPr (t), c->dt, sizeof (double) * 2 * c->nsteps);
+  const mwSize dims[3] = { (mwSize) c->n, (mwSize) c->dk + 2,
+                           (mwSize) c->nsteps };
+  mxArray *y = mxCreateNumericArray (3, dims, mxDOUBLE_CLASS, mxREAL);
+  if (c->nsteps)
+    memcpy (mxGetPr (y), c->dy,
+            sizeof (double) * c->n * (c->dk + 2) * c->nsteps);
+  mxSetField (d, 0, "t", t);
+  mxSetField (d, 0, "y", y);
+  return d;
+}
+
+static mxArray *
 sol_struct (const symmex_method *m, const void *own, const symmex_ctx *c,
             const sym_stats *st, const char *jac_used)
 {
@@ -206,6 +282,19 @@ sol_struct (const symmex_method *m, const void *own, const symmex_ctx *c,
     }
   mxAddField (s, "stats");
   mxSetField (s, 0, "stats", stats_struct (&st->cnt, jac_used));
+  if (c->hbuf)
+    {
+      mxAddField (s, "H");
+      mxSetField (s, 0, "H", row_of (c->hbuf, c->nrows));
+      mxAddField (mxGetField (s, 0, "stats"), "max_dH");
+      mxSetField (mxGetField (s, 0, "stats"), 0, "max_dH",
+                  mxCreateDoubleScalar (c->max_dh));
+    }
+  if (c->o->dense)
+    {
+      mxAddField (s, "dense");
+      mxSetField (s, 0, "dense", dense_struct (c));
+    }
   if (m->sol_fields)
     m->sol_fields (s, own, st);
   return s;

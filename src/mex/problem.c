@@ -8,12 +8,42 @@
 #include "symmex.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 static mxArray *
 col (int n)
 {
   return mxCreateDoubleMatrix (n, 1, mxREAL);
+}
+
+/* FCN takes (t, y) and the parameters given after Y0 (or OPTS): a
+   function that declares fewer arguments is told at once, not by its own
+   error at the first call */
+static void
+check_nargin (const symmex_ctx *c, const mxArray *fcn)
+{
+  mxArray *in[1] = { (mxArray *) fcn }, *out[1] = { NULL };
+  mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "nargin");
+  if (ex)
+    {
+      mxDestroyArray (ex);
+      return;
+    }
+  const double k = mxIsNumeric (out[0]) ? mxGetScalar (out[0]) : -1;
+  mxDestroyArray (out[0]);
+  if (k < 0 || k >= 2 + c->nextra)
+    return;
+  char ps[64] = ", p1";
+  if (c->nextra > 1)
+    snprintf (ps, sizeof ps, ", p1, %sp%d", c->nextra > 2 ? "..., " : "",
+              c->nextra);
+  char follow[64] = "a parameter follows";
+  if (c->nextra > 1)
+    snprintf (follow, sizeof follow, "%d parameters follow", c->nextra);
+  mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: FCN takes %g argument%s, but is "
+                     "called as FCN (t, y%s): %s Y0 or OPTS", c->solver, k,
+                     k == 1 ? "" : "s", ps, follow);
 }
 
 /* FCN at (t0, y0): its size and values, and (probe_hess) whether it gives
@@ -43,7 +73,7 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
   for (int i = 0; i < n; i++)
     if (! isfinite (f0[i]))
       mexErrMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned %s "
-                         "(element %d) at t = %.17g, the initial point",
+                         "(element %d) at t = %.15g, the initial point",
                          c->solver, SYMMEX_NUM (f0[i], "%g"), i + 1,
                          a->tspan[0]);
   if (have2)
@@ -136,6 +166,8 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
     c->args[3 + i] = (mxArray *) c->extra[i];
   memcpy (mxGetPr (c->args[2]), a->y0, sizeof (double) * n);
   symmex_direct_name (a->fcn, c->fname, sizeof c->fname);
+  if (c->nextra > 0)
+    check_nargin (c, a->fcn);
 
   /* the Hessian as FCN's second output only matters to Newton */
   int have2 = probe_fcn (c, a, need_jac && ! o->jacobian && ! o->hessfcn);

@@ -41,6 +41,8 @@ typedef struct {
 extern const symmex_method symmex_method_se;
 extern const symmex_method symmex_method_sv;
 extern const symmex_method symmex_method_spvi;
+/* all of them (NULL-terminated) */
+extern const symmex_method *const symmex_methods[];
 
 /* The whole call of a solver: NAME (fcn, tspan, y0, opts, p1, ...). */
 void symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[],
@@ -78,7 +80,7 @@ typedef struct {
   const mxArray *outputfcn;   /* handle/name or NULL */
   int *outputsel;             /* 0-based indices, or NULL */
   int noutputsel;
-  int refine;
+  int refine;                 /* 0: not given */
   int stats;
   int vectorized;
   const mxArray *jacobian;    /* matrix or handle, or NULL */
@@ -88,6 +90,8 @@ typedef struct {
   double newton_tol;
   int max_newton;
   long max_steps;
+  const mxArray *hamiltonian; /* H (t, y, ...) for the energy, or NULL */
+  int dense;                  /* sol carries the dense output */
 } symmex_opts;
 
 /* Parse OPTS (an odeset struct, a plain struct, or []) for a problem of
@@ -142,6 +146,13 @@ typedef struct {
   char fname[64], jname[64], ename[64], oname[64];
   const char *nonfinite_what;  /* which function last returned NaN/Inf */
   double nonfinite_t;          /* and at which t */
+  /* sol's dense output: each step's [t; tnew] and its dense samples
+     (n x (dk + 2) each) */
+  double *dt, *dy;
+  size_t nsteps, dcap;
+  int dk;
+  /* the Hamiltonian at the rows, its largest relative change */
+  double *hbuf, max_dh;
 } symmex_ctx;
 
 /* The context of a run: FCN probed at (t0, y0) (its size and values,
@@ -186,6 +197,11 @@ mxArray *symmex_take_double (mxArray **pa);
 /* the core's output and event sinks (user: the symmex_ctx) */
 int symmex_sink_row (double t, const double *y, void *user);
 int symmex_sink_event (double te, const double *ye, int ie, void *user);
+int symmex_sink_dense (double t, double tnew, int k, const double *y,
+                       void *user);
+/* the Hamiltonian option at every row into c->hbuf, and the largest
+   relative change from the first (the absolute one if H(t0) = 0) */
+void symmex_energy (symmex_ctx *c);
 /* OutputFcn (t, y(OutputSel), flag, extras...): its stop flag */
 int symmex_outputfcn (symmex_ctx *c, const double *t, int nt,
                       const double *y, const char *flag);
@@ -203,7 +219,8 @@ void symmex_report (const symmex_method *m, const void *own,
 /* the source of Newton's matrices as Stats and sol.stats say it */
 void symmex_jac_used (const symmex_ctx *c, const sym_stats *st, char *buf,
                       size_t len);
-void symmex_print_stats (const sym_stats *st, const char *jac_used);
+void symmex_print_stats (const sym_stats *st, const char *jac_used,
+                         const symmex_ctx *c);
 
 /* "1x2 double", "2x2 sparse double", "1x1 complex double", "1x3 char": what
    the user gave, for messages (into buf, returned) */
@@ -235,10 +252,10 @@ mxArray *symmex_full (const mxArray *a);
 
 /* Octave's mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt put "NAME: " (the
    running MEX function's name) in front of every message, and ours already
-   begin with the solver's name ("odeSPVI: Y0 must ..."): the user would see
-   it twice.  These wrappers (messages.c) format the message, drop that
-   leading "NAME: " and pass the rest on, so it appears once.  Every
-   mexErrMsgIdAndTxt/mexWarnMsgIdAndTxt of the MEX layer goes through them. */
+   begin with the solver's name ("odeSPVI: Y0 must ..."): these wrappers
+   (messages.c) raise Octave's own error and warning instead, so that the
+   message reads as written.  Every mexErrMsgIdAndTxt/mexWarnMsgIdAndTxt of
+   the MEX layer goes through them. */
 void symmex_err (const char *id, const char *fmt, ...);
 void symmex_warn (const char *id, const char *fmt, ...);
 #ifndef SYMMEX_NO_REDIRECT
