@@ -14,8 +14,9 @@
 #   make bench          all, then bench/run_benchmarks.m
 #   make clean
 #
-# The MEX files are linked into inst/, next to the same-name m-files that
-# hold their help and tests (see src/Makefile for why).
+# src/Makefile builds the compiled gateways __odeSE__.mex etc. in src/;
+# the m-files of inst/ (help, tests, the front ends odeSE etc.) call them.
+# Without installing, Octave needs both on its path: DEVPATH.
 
 # bash for pipefail: `make check` tees the output of its parts.
 SHELL := /bin/bash -o pipefail
@@ -32,6 +33,10 @@ VERSION  := $(shell sed -n 's/^Version:[[:space:]]*//p' DESCRIPTION)
 DISTNAME := $(PACKAGE)-$(VERSION)
 TARBALL  := $(DISTNAME).tar.gz
 
+# The development tree's m-files and MEX files, for Octave's --path and
+# addpath (both split a path at ':').
+DEVPATH := $(CURDIR)/inst:$(CURDIR)/src
+
 # What the tarball holds: what pkg install needs, plus the tests.
 DIST_FILES := DESCRIPTION INDEX COPYING NEWS README.md inst src tests
 
@@ -46,7 +51,7 @@ mex:
 	$(MAKE) -C src
 
 demo: all
-	$(OCTAVE) --norc --no-gui --path "$(CURDIR)/inst" tools/demo.m
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" tools/demo.m
 
 # Runs the C and the Octave tests (the second even if the first fails),
 # then prints the totals as its last line, "N passed, M failed", and fails
@@ -83,10 +88,10 @@ valgrind: deps
 # Fails on memory errors (invalid reads/writes, uninitialised values) whose
 # stack involves our code; Octave's own noise is reported, not failed.
 check-memory: mex
-	sh tests/check_memory.sh "$(CURDIR)/inst" "$(OCTAVE)"
+	sh tests/check_memory.sh "$(DEVPATH)" "$(OCTAVE)"
 
 bench: all
-	$(OCTAVE) --norc --no-gui --path "$(CURDIR)/inst" bench/run_benchmarks.m
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_benchmarks.m
 
 # Stage a clean copy (no build products) and pack it as DISTNAME/.  In a
 # git checkout only the files git tracks are packed (as they are in the
@@ -130,6 +135,9 @@ clean:
 	$(MAKE) -C tests/c clean
 	rm -rf build $(PACKAGE)-*.tar.gz fntests.log octave-workspace \
 	       demo-energy.png bench/callback_cost.mex
+	# MEX files that builds before 0.2.0 put in inst/ (they would shadow
+	# the m-files there)
+	rm -f inst/*.mex
 
 .PHONY: all deps mex demo check check-c check-octave valgrind check-memory \
         bench dist install check-installed clean
