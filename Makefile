@@ -40,15 +40,17 @@ DEVPATH := $(CURDIR)/inst:$(CURDIR)/src
 # What the tarball holds: what pkg install needs, plus the tests.
 DIST_FILES := DESCRIPTION INDEX COPYING NEWS README.md inst src tests
 
+# `make -C src` alone (what pkg runs) would also remove the objects
+# after linking; its `mex` target keeps them, for quick rebuilds.
 all: deps
-	$(MAKE) -C src
+	$(MAKE) -C src mex
 
 deps:
 	sh tools/install-deps.sh
 
 # Build only (no dependency check).
 mex:
-	$(MAKE) -C src
+	$(MAKE) -C src mex
 
 demo: all
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" tools/demo.m
@@ -106,7 +108,7 @@ dist:
 	  cp -R $(DIST_FILES) build/dist/$(DISTNAME)/; \
 	fi
 	cd build/dist/$(DISTNAME) && \
-	  rm -rf tests/c/build && \
+	  rm -rf tests/c/build src/obj && \
 	  find . \( -name '*.o' -o -name '*.mex' -o -name '*.oct' -o -name '*.c-tst' \
 	            -o -name '*.d' -o -name 'fntests.log' -o -name 'octave-workspace' \) \
 	         -exec rm -f {} +
