@@ -3,15 +3,19 @@
 
 # Makefile -- developer entry point of the symplectic Octave package.
 #
-#   make [all]          install missing Debian dependencies, build the MEX files
-#   make demo           all, then run tools/demo.m
-#   make check          all, then the whole test suite (C tests + Octave tests)
-#   make valgrind       the C tests under valgrind
-#   make check-memory   the MEX functions under valgrind (tests/check_memory.sh, ~90 s)
+#   make [all]          build the MEX files (no root, no network, no valgrind)
+#   make deps           install the missing Debian packages (Octave, its
+#                       headers, LAPACK/BLAS; tools/install-deps.sh)
+#   make deps-memory    deps, and valgrind for check-memory and valgrind
+#   make demo           deps and all, then run tools/demo.m
+#   make check          deps and all, then the whole test suite (C + Octave)
+#   make valgrind       deps-memory, then the C tests under valgrind
+#   make check-memory   deps-memory and all, then the MEX functions under
+#                       valgrind (tests/check_memory.sh, ~90 s)
 #   make dist           symplectic-<version>.tar.gz, the tarball pkg install takes
 #   make install        dist, then pkg install it into Octave
 #   make check-installed  install the tarball into a temporary prefix, test it there
-#   make bench          all, then bench/run_benchmarks.m
+#   make bench          deps and all, then bench/run_benchmarks.m
 #   make clean
 #
 # src/Makefile builds the compiled gateways __odeSE__.mex etc. in src/;
@@ -40,26 +44,29 @@ DEVPATH := $(CURDIR)/inst:$(CURDIR)/src
 # What the tarball holds: what pkg install needs, plus the tests.
 DIST_FILES := DESCRIPTION INDEX COPYING NEWS README.md inst src tests
 
-# `make -C src` alone (what pkg runs) would also remove the objects
-# after linking; its `mex` target keeps them, for quick rebuilds.
-all: deps
+# Build only: `make -C src` alone (what pkg runs) would also remove the
+# objects after linking; `mex` keeps them, for quick rebuilds.
+all:
 	$(MAKE) -C src mex
 
 deps:
 	sh tools/install-deps.sh
 
-# Build only (no dependency check).
-mex:
-	$(MAKE) -C src mex
+deps-memory:
+	sh tools/install-deps.sh memory
 
-demo: all
+# deps, then the build (in this order, also under make -j).
+setup: deps
+	$(MAKE) --no-print-directory all
+
+demo: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" tools/demo.m
 
 # Runs the C and the Octave tests (the second even if the first fails),
 # then prints the totals as its last line, "N passed, M failed", and fails
 # if any test failed.  A part that printed no summary (e.g. it did not
 # build) counts as one failure.
-check: all
+check: setup
 	@mkdir -p build; status=0; \
 	$(MAKE) --no-print-directory check-c 2>&1 | tee build/check-c.log \
 	  || status=1; \
@@ -81,18 +88,19 @@ check-c:
 
 # tests/run_tests.m prints "N passed, M failed" last and returns the exit
 # status (non-zero on any failure or when no test ran).
-check-octave: mex
+check-octave: all
 	$(OCTAVE_RUN) --eval 'addpath ("$(CURDIR)/tests"); exit (run_tests ())'
 
-valgrind: deps
+valgrind: deps-memory
 	$(MAKE) -C tests/c valgrind
 
 # Fails on memory errors (invalid reads/writes, uninitialised values) whose
 # stack involves our code; Octave's own noise is reported, not failed.
-check-memory: mex
+check-memory: deps-memory
+	$(MAKE) --no-print-directory all
 	sh tests/check_memory.sh "$(DEVPATH)" "$(OCTAVE)"
 
-bench: all
+bench: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_benchmarks.m
 
 # Stage a clean copy (no build products) and pack it as DISTNAME/.  In a
@@ -141,5 +149,5 @@ clean:
 	# the m-files there)
 	rm -f inst/*.mex
 
-.PHONY: all deps mex demo check check-c check-octave valgrind check-memory \
-        bench dist install check-installed clean
+.PHONY: all deps deps-memory setup demo check check-c check-octave valgrind \
+        check-memory bench dist install check-installed clean
