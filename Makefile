@@ -41,8 +41,12 @@ TARBALL  := $(DISTNAME).tar.gz
 # addpath (both split a path at ':').
 DEVPATH := $(CURDIR)/inst:$(CURDIR)/src
 
-# What the tarball holds: what pkg install needs, plus the tests.
-DIST_FILES := DESCRIPTION INDEX COPYING NEWS README.md inst src tests
+# What the tarball holds: what pkg install needs (DESCRIPTION, INDEX,
+# COPYING, NEWS, inst/, src/ with its Makefile; doc/ is installed with the
+# package), plus what the README's make commands need in the unpacked
+# tarball: this Makefile, tools/, tests/, bench/ and the documents.
+DIST_FILES := DESCRIPTION INDEX COPYING NEWS README.md ARCHITECTURE.md \
+              Makefile inst src doc tests tools bench
 
 # Build only: `make -C src` alone (what pkg runs) would also remove the
 # objects after linking; `mex` keeps them, for quick rebuilds.
