@@ -14,7 +14,8 @@
 #                       valgrind (tests/check_memory.sh, ~90 s)
 #   make dist           symplectic-<version>.tar.gz, the tarball pkg install takes
 #   make install        dist, then pkg install it into Octave
-#   make check-installed  install the tarball into a temporary prefix, test it there
+#   make check-installed  pkg install the tarball as a non-root user, then
+#                       pkg test and demo odeSPVI (tests/check_installed.sh)
 #   make bench          deps and all, then bench/run_benchmarks.m
 #   make clean
 #
@@ -135,14 +136,10 @@ install: dist
 	$(OCTAVE_RUN) --eval 'pkg install "$(CURDIR)/$(TARBALL)"'
 	@echo "installed; in Octave: pkg load $(PACKAGE)"
 
-# A throw-away local package prefix and list, so nothing of the system's
-# Octave is touched; then the tests of the installed copy.
-check-installed: dist
-	@tmp=$$(mktemp -d) && trap 'rm -rf "$$tmp"' EXIT && \
-	$(OCTAVE_RUN) --eval "pkg prefix '$$tmp/pkg' '$$tmp/arch'; \
-	  pkg local_list '$$tmp/octave_packages'; \
-	  pkg install -local '$(CURDIR)/$(TARBALL)'; \
-	  addpath ('$(CURDIR)/tests'); exit (run_tests ('installed'))"
+# make dist, then pkg install of the tarball as a non-root user into a
+# throw-away prefix, pkg test and demo odeSPVI there (about 10 s).
+check-installed:
+	sh tests/check_installed.sh "$(OCTAVE)"
 
 clean:
 	$(MAKE) -C src clean
