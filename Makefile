@@ -3,19 +3,25 @@
 
 # Makefile -- developer entry point of the symplectic Octave package.
 #
-#   make [all]          install missing Debian dependencies, build the MEX files
-#   make demo           all, then run tools/demo.m
-#   make check          all, then the whole test suite (C tests + Octave tests)
-#   make valgrind       the C tests under valgrind
-#   make check-memory   the MEX functions under valgrind (tests/check_memory.sh, ~90 s)
+#   make [all]          build the MEX files (no root, no network, no valgrind)
+#   make deps           install the missing Debian packages (Octave, its
+#                       headers, LAPACK/BLAS; tools/install-deps.sh)
+#   make deps-memory    deps, and valgrind for check-memory and valgrind
+#   make demo           deps and all, then run tools/demo.m
+#   make check          deps and all, then the whole test suite (C + Octave)
+#   make valgrind       deps-memory, then the C tests under valgrind
+#   make check-memory   deps-memory and all, then the MEX functions under
+#                       valgrind (tests/check_memory.sh, ~90 s)
 #   make dist           symplectic-<version>.tar.gz, the tarball pkg install takes
 #   make install        dist, then pkg install it into Octave
-#   make check-installed  install the tarball into a temporary prefix, test it there
-#   make bench          all, then bench/run_benchmarks.m
+#   make check-installed  pkg install the tarball as a non-root user, then
+#                       pkg test and demo odeSPVI (tests/check_installed.sh)
+#   make bench          deps and all, then bench/run_benchmarks.m
 #   make clean
 #
-# The MEX files are linked into inst/, next to the same-name m-files that
-# hold their help and tests (see src/Makefile for why).
+# src/Makefile builds the compiled gateways __odeSE__.mex etc. in src/;
+# the m-files of inst/ (help, tests, the front ends odeSE etc.) call them.
+# Without installing, Octave needs both on its path: DEVPATH.
 
 # bash for pipefail: `make check` tees the output of its parts.
 SHELL := /bin/bash -o pipefail
@@ -32,27 +38,40 @@ VERSION  := $(shell sed -n 's/^Version:[[:space:]]*//p' DESCRIPTION)
 DISTNAME := $(PACKAGE)-$(VERSION)
 TARBALL  := $(DISTNAME).tar.gz
 
-# What the tarball holds: what pkg install needs, plus the tests.
-DIST_FILES := DESCRIPTION INDEX COPYING NEWS README.md inst src tests
+# The development tree's m-files and MEX files, for Octave's --path and
+# addpath (both split a path at ':').
+DEVPATH := $(CURDIR)/inst:$(CURDIR)/src
 
-all: deps
-	$(MAKE) -C src
+# What the tarball holds: what pkg install needs (DESCRIPTION, INDEX,
+# COPYING, NEWS, inst/, src/ with its Makefile; doc/ is installed with the
+# package), plus what the README's make commands need in the unpacked
+# tarball: this Makefile, tools/, tests/, bench/ and the documents.
+DIST_FILES := DESCRIPTION INDEX COPYING NEWS README.md ARCHITECTURE.md \
+              Makefile inst src doc tests tools bench
+
+# Build only: `make -C src` alone (what pkg runs) would also remove the
+# objects after linking; `mex` keeps them, for quick rebuilds.
+all:
+	$(MAKE) -C src mex
 
 deps:
 	sh tools/install-deps.sh
 
-# Build only (no dependency check).
-mex:
-	$(MAKE) -C src
+deps-memory:
+	sh tools/install-deps.sh memory
 
-demo: all
-	$(OCTAVE) --norc --no-gui --path "$(CURDIR)/inst" tools/demo.m
+# deps, then the build (in this order, also under make -j).
+setup: deps
+	$(MAKE) --no-print-directory all
+
+demo: setup
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" tools/demo.m
 
 # Runs the C and the Octave tests (the second even if the first fails),
 # then prints the totals as its last line, "N passed, M failed", and fails
 # if any test failed.  A part that printed no summary (e.g. it did not
 # build) counts as one failure.
-check: all
+check: setup
 	@mkdir -p build; status=0; \
 	$(MAKE) --no-print-directory check-c 2>&1 | tee build/check-c.log \
 	  || status=1; \
@@ -74,19 +93,20 @@ check-c:
 
 # tests/run_tests.m prints "N passed, M failed" last and returns the exit
 # status (non-zero on any failure or when no test ran).
-check-octave: mex
+check-octave: all
 	$(OCTAVE_RUN) --eval 'addpath ("$(CURDIR)/tests"); exit (run_tests ())'
 
-valgrind: deps
+valgrind: deps-memory
 	$(MAKE) -C tests/c valgrind
 
 # Fails on memory errors (invalid reads/writes, uninitialised values) whose
 # stack involves our code; Octave's own noise is reported, not failed.
-check-memory: mex
-	sh tests/check_memory.sh "$(CURDIR)/inst" "$(OCTAVE)"
+check-memory: deps-memory
+	$(MAKE) --no-print-directory all
+	sh tests/check_memory.sh "$(DEVPATH)" "$(OCTAVE)"
 
-bench: all
-	$(OCTAVE) --norc --no-gui --path "$(CURDIR)/inst" bench/run_benchmarks.m
+bench: setup
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_benchmarks.m
 
 # Stage a clean copy (no build products) and pack it as DISTNAME/.  In a
 # git checkout only the files git tracks are packed (as they are in the
@@ -101,7 +121,7 @@ dist:
 	  cp -R $(DIST_FILES) build/dist/$(DISTNAME)/; \
 	fi
 	cd build/dist/$(DISTNAME) && \
-	  rm -rf tests/c/build && \
+	  rm -rf tests/c/build src/obj && \
 	  find . \( -name '*.o' -o -name '*.mex' -o -name '*.oct' -o -name '*.c-tst' \
 	            -o -name '*.d' -o -name 'fntests.log' -o -name 'octave-workspace' \) \
 	         -exec rm -f {} +
@@ -116,20 +136,19 @@ install: dist
 	$(OCTAVE_RUN) --eval 'pkg install "$(CURDIR)/$(TARBALL)"'
 	@echo "installed; in Octave: pkg load $(PACKAGE)"
 
-# A throw-away local package prefix and list, so nothing of the system's
-# Octave is touched; then the tests of the installed copy.
-check-installed: dist
-	@tmp=$$(mktemp -d) && trap 'rm -rf "$$tmp"' EXIT && \
-	$(OCTAVE_RUN) --eval "pkg prefix '$$tmp/pkg' '$$tmp/arch'; \
-	  pkg local_list '$$tmp/octave_packages'; \
-	  pkg install -local '$(CURDIR)/$(TARBALL)'; \
-	  addpath ('$(CURDIR)/tests'); exit (run_tests ('installed'))"
+# make dist, then pkg install of the tarball as a non-root user into a
+# throw-away prefix, pkg test and demo odeSPVI there (about 10 s).
+check-installed:
+	sh tests/check_installed.sh "$(OCTAVE)"
 
 clean:
 	$(MAKE) -C src clean
 	$(MAKE) -C tests/c clean
 	rm -rf build $(PACKAGE)-*.tar.gz fntests.log octave-workspace \
 	       demo-energy.png bench/callback_cost.mex
+	# MEX files that builds before 0.2.0 put in inst/ (they would shadow
+	# the m-files there)
+	rm -f inst/*.mex
 
-.PHONY: all deps mex demo check check-c check-octave valgrind check-memory \
-        bench dist install check-installed clean
+.PHONY: all deps deps-memory setup demo check check-c check-octave valgrind \
+        check-memory bench dist install check-installed clean

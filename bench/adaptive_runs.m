@@ -13,7 +13,7 @@
 ## step-size control's comments in src/core/control.c quote it.  Run
 ## from the top directory after make:
 ##
-##   octave-cli --path inst bench/adaptive_runs.m
+##   octave-cli --path inst:src bench/adaptive_runs.m
 
 1;
 

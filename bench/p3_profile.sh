@@ -23,7 +23,7 @@ fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 if ! perf record -q --call-graph dwarf,65528 -F 1000 -o "$tmp/perf.data" \
-     "$OCTAVE" --norc --no-gui --path "$top/inst" "$here/p3_run.m" \
+     "$OCTAVE" --norc --no-gui --path "$top/inst:$top/src" "$here/p3_run.m" \
      > "$tmp/out" 2>&1; then
   echo "p3_profile: perf record failed: skipped"
   exit 0

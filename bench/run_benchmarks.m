@@ -3,7 +3,7 @@
 
 ## run_benchmarks.m -- every benchmark of the package in one process run,
 ## printed as one table and written to bench/RESULTS.md with the machine and
-## Octave version.  `make bench` runs it with inst/ on the path.
+## Octave version.  `make bench` runs it with inst/ and src/ on the path.
 ##
 ## Each row gives wall time per step and callbacks per step (from Stats), so
 ## fewer calls can be told from cheaper calls.  Benchmarks are not tests:

@@ -123,7 +123,14 @@
 ## @end deftypefn
 
 function varargout = odeSE (varargin)
-  error ("odeSE: the compiled function odeSE.mex is missing; build the package with 'make'");
+  ## The solver is the compiled gateway __odeSE__ (src/__odeSE__.c); this
+  ## m-file holds its help and tests.  With no output it plots with
+  ## odeplot, as ode45 does.
+  if (nargout == 0)
+    __odeSE__ (varargin{:});
+  else
+    [varargout{1:nargout}] = __odeSE__ (varargin{:});
+  endif
 endfunction
 
 %!demo

@@ -111,7 +111,14 @@
 ## @end deftypefn
 
 function varargout = odeSPVI (varargin)
-  error ("odeSPVI: the compiled function odeSPVI.mex is missing; build the package with 'make'");
+  ## The solver is the compiled gateway __odeSPVI__ (src/__odeSPVI__.c); this
+  ## m-file holds its help and tests.  With no output it plots with
+  ## odeplot, as ode45 does.
+  if (nargout == 0)
+    __odeSPVI__ (varargin{:});
+  else
+    [varargout{1:nargout}] = __odeSPVI__ (varargin{:});
+  endif
 endfunction
 
 %!demo

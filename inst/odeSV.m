@@ -109,7 +109,14 @@
 ## @end deftypefn
 
 function varargout = odeSV (varargin)
-  error ("odeSV: the compiled function odeSV.mex is missing; build the package with 'make'");
+  ## The solver is the compiled gateway __odeSV__ (src/__odeSV__.c); this
+  ## m-file holds its help and tests.  With no output it plots with
+  ## odeplot, as ode45 does.
+  if (nargout == 0)
+    __odeSV__ (varargin{:});
+  else
+    [varargout{1:nargout}] = __odeSV__ (varargin{:});
+  endif
 endfunction
 
 %!demo

@@ -3,17 +3,20 @@
 # SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.
 # check_memory.sh -- the MEX functions under valgrind (make check-memory).
 #
-#   tests/check_memory.sh [MEXDIR [OCTAVE]]
+#   tests/check_memory.sh [DIRS [OCTAVE]]
+#
+# DIRS: the directories of the solvers' m-files and of their MEX gateways,
+# separated by ':' (default: inst/ and src/ of this tree).
 #
 # Runs tests/memcheck_run.m (a short tour of every solver, option, error
 # and failure path) in octave-cli under valgrind's memcheck, then judges
 # the log:
 #
-# * Errors whose stack involves our code -- the MEX files odeSE.mex,
-#   odeSV.mex, odeSPVI.mex, or any function or source file of src/core and
-#   src/mex (sym_*, symmex_*, mexFunction, run.c, driver.c, ...) -- fail
-#   the check: invalid reads/writes/frees, uses of uninitialised values,
-#   overlapping copies, bad syscall arguments.
+# * Errors whose stack involves our code -- the MEX files __odeSE__.mex,
+#   __odeSV__.mex, __odeSPVI__.mex, or any function or source file of
+#   src/core and src/mex (sym_*, symmex_*, mexFunction, run.c, driver.c,
+#   ...) -- fail the check: invalid reads/writes/frees, uses of
+#   uninitialised values, overlapping copies, bad syscall arguments.
 # * Errors entirely inside Octave or the system libraries are Octave's own
 #   noise: reported (counted), not failed.  tests/valgrind-octave.supp
 #   silences the known ones (uninitialised-value reports from the
@@ -30,7 +33,7 @@
 
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
-MEXDIR=${1:-$root/inst}
+DIRS=${1:-$root/inst:$root/src}
 OCTAVE=${2:-octave-cli}
 VALGRIND=${VALGRIND:-valgrind}
 log=$root/build/check-memory.log
@@ -52,7 +55,7 @@ OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 \
   --num-callers=40 $VALGRIND_EXTRA \
   --suppressions="$here/valgrind-octave.supp" --log-file="$log" \
   "$OCTAVE" --norc --quiet --no-gui --no-history \
-  --eval "addpath ('$MEXDIR'); addpath ('$here'); exit (memcheck_run ())" \
+  --eval "addpath ('$DIRS'); addpath ('$here'); exit (memcheck_run ())" \
   > "$out" 2>&1
 rc=$?
 secs=$(($(date +%s) - start))
@@ -60,7 +63,7 @@ secs=$(($(date +%s) - start))
 # Split the log into error records (blank "==PID== " lines separate them)
 # and count those whose stack mentions our code.
 srcs=$(cd "$here/../src" && find . -name '*.c' -exec basename {} .c \; | sort -u | paste -sd'|')
-ours="ode[A-Z]+__?\\.mex|ode[A-Z]+\\.mex|mexFunction|symmex_|[^a-z_](sym|spvi)_[a-z_]+ |($srcs)\\.c:"
+ours="ode[A-Z]+(__)?\\.mex|mexFunction|symmex_|[^a-z_](sym|spvi)_[a-z_]+ |($srcs)\\.c:"
 kinds='Invalid (read|write|free)|Conditional jump|Use of uninitialised|Syscall param|Mismatched free|Source and destination overlap|Argument .* of function|Uninitialised value'
 report=$(awk -v ours="$ours" -v kinds="$kinds" '
   function flush() {

@@ -4,12 +4,13 @@
 # ctrlc_test.sh -- Ctrl-C (SIGINT) during a long integration must bring an
 # interactive Octave back to its prompt, still working.
 #
-#   tests/ctrlc_test.sh [MEXDIR [OCTAVE]]
+#   tests/ctrlc_test.sh [DIRS [OCTAVE]]
 #
-# MEXDIR: the directory of odeSE.mex, odeSV.mex, odeSPVI.mex (default: the
-# inst/ beside this script's directory); OCTAVE: the octave-cli to run
-# (default octave-cli).  Run by tests/test_ctrlc.m (so by make check);
-# exit status 0 when every scenario passed.
+# DIRS: the directories of the solvers' m-files (odeSE.m, ...) and of
+# their MEX gateways (__odeSE__.mex, ...), separated by ':' (default: the
+# inst/ and src/ beside this script's directory); OCTAVE: the octave-cli
+# to run (default octave-cli).  Run by tests/test_ctrlc.m (so by make
+# check); exit status 0 when every scenario passed.
 #
 # Each scenario starts octave-cli --interactive reading commands from a
 # FIFO (a real prompt, as at a terminal, without needing one: without
@@ -20,7 +21,7 @@
 # killed (by its process id) and the scenario fails.
 
 here=$(cd "$(dirname "$0")" && pwd)
-MEXDIR=${1:-$here/../inst}
+DIRS=${1:-$here/../inst:$here/../src}
 OCTAVE=${2:-octave-cli}
 LIMIT=${CTRLC_LIMIT:-30}
 
@@ -53,7 +54,7 @@ run_scenario () {   # NAME COMMAND
     --interactive < "$fifo" > "$log" 2>&1 &
   octpid=$!
   exec 3> "$fifo"
-  printf '%s\n' "addpath ('$MEXDIR'); f = @(t, y) [y(2); -y(1)]; printf ('READY\\n'); fflush (stdout);" >&3
+  printf '%s\n' "addpath ('$DIRS'); f = @(t, y) [y(2); -y(1)]; printf ('READY\\n'); fflush (stdout);" >&3
   if ! wait_for "$log" READY "$LIMIT"; then
     echo "ctrlc_test: $name: Octave did not start"; cat "$log"
     exec 3>&-; kill -KILL "$octpid" 2>/dev/null; wait "$octpid" 2>/dev/null

@@ -5,7 +5,7 @@
 ## regression_runs () that tests/test_regression.m compares with.  Run
 ## from the top of the tree after `make`:
 ##
-##   octave-cli --norc --path inst --path tests tests/record_regression.m
+##   octave-cli --norc --path inst:src:tests tests/record_regression.m
 
 runs = regression_runs ();
 ref = struct ("name", {runs.name});

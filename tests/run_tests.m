@@ -7,9 +7,9 @@
 ## Run the Octave test suite of the symplectic package; return 0 if every
 ## test passed and at least one ran, 1 otherwise.
 ##
-## @code{run_tests ()} tests the development tree: the MEX files that
-## @code{make -C src} built into @file{inst/} together with the m-files
-## there.  @code{run_tests ("installed")} tests the installed package
+## @code{run_tests ()} tests the development tree: the m-files of
+## @file{inst/} and the MEX files that @code{make} built in @file{src/}.
+## @code{run_tests ("installed")} tests the installed package
 ## instead (after @code{pkg load symplectic}), the way @code{pkg test
 ## symplectic} does.  In both modes it runs, with @code{test}:
 ##
@@ -29,15 +29,13 @@
 ## octave-cli --norc --quiet --eval 'addpath ("tests"); exit (run_tests ())'
 ## @end example
 ##
-## Why the MEX files live in @file{inst/}: Octave shows the help of
-## @file{odeSPVI.mex} from @file{odeSPVI.m} only when both are in the same
-## directory, and in one directory it runs the @file{.mex}, never the
-## @file{.m}.  In two directories the @file{.m} wins whenever its directory
-## comes first on the path or is the current directory, which is what
-## @code{pkg test} does (it @code{cd}s into the package directory).  So
-## @file{src/Makefile} links the MEX files into @file{inst/}: in the source
-## tree and in the package @code{pkg install} builds, which copies
-## @file{inst/*} into the installed package directory.
+## The layout it checks first: the solvers @code{odeSE}, @code{odeSV},
+## @code{odeSPVI} are the m-files of @file{inst/} (help, tests, front
+## ends), and each calls its compiled gateway @code{__odeSE__} etc., a
+## @file{.mex} built from @file{src/__odeSE__.c} etc.: in @file{src/} in
+## the development tree, in the package's architecture-dependent
+## directory once installed (as Octave's @code{ode15s.m} calls
+## @code{__ode15__}).
 ## @end deftypefn
 
 function status = run_tests (mode = "dev")
@@ -46,14 +44,17 @@ function status = run_tests (mode = "dev")
   srcdir = fullfile (root, "src");
   testsdir = fullfile (root, "tests");
 
-  ## The MEX entry points are the C files at the top of src/.
+  ## The MEX entry points are the C files at the top of src/, __NAME__.c:
+  ## the gateways of the solvers NAME.
   entries = dir (fullfile (srcdir, "*.c"));
   mexnames = regexprep ({entries.name}, '\.c$', "");
+  solvers = regexprep (mexnames, '^__(.*)__$', "$1");
 
   switch (mode)
     case "dev"
-      pkgdirs = {fullfile(root, "inst")};
-      addpath (pkgdirs{1});
+      mdir = fullfile (root, "inst");
+      pkgdirs = {mdir};
+      addpath (mdir, srcdir);
       ## C sources with %! blocks (pkg install turns them into *-tst
       ## files) and src/*-tst (pkg install copies them).
       tst = dir (fullfile (srcdir, "*-tst"));
@@ -65,6 +66,7 @@ function status = run_tests (mode = "dev")
       if (isempty (info))
         error ("run_tests: package symplectic is not installed");
       endif
+      mdir = info{1}.dir;
       pkgdirs = unique ({info{1}.dir, info{1}.archprefix});
       pkgdirs = pkgdirs(cellfun (@isfolder, pkgdirs));
       csrc = {};
@@ -76,8 +78,10 @@ function status = run_tests (mode = "dev")
 
   printf ("Testing symplectic (%s): %s\n", mode, strjoin (pkgdirs, ", "));
 
-  ## Each solver must resolve to a MEX file sitting next to its m-file.
+  ## Each gateway must resolve to a MEX file, and each solver to its
+  ## m-file (a stray odeSE.mex of an old build would shadow it).
   nbad = 0;
+  hint = ifelse_str (strcmp (mode, "dev"), " (run make)", "");
   for i = 1:numel (mexnames)
     try
       w = which (mexnames{i});   # loads the MEX file: may fail
@@ -86,12 +90,16 @@ function status = run_tests (mode = "dev")
       nbad += 1;
       continue;
     end_try_catch
-    [wdir, ~, wext] = fileparts (w);
-    if (! strcmp (wext, ".mex")
-        || ! exist (fullfile (wdir, [mexnames{i} ".m"]), "file"))
-      printf ("FAIL: %s resolves to '%s', not to a .mex beside its .m%s\n",
-              mexnames{i}, w, ifelse_str (strcmp (mode, "dev"),
-                                          " (run make)", ""));
+    [~, ~, wext] = fileparts (w);
+    if (! strcmp (wext, ".mex"))
+      printf ("FAIL: %s resolves to '%s', not to a .mex%s\n",
+              mexnames{i}, w, hint);
+      nbad += 1;
+    endif
+    w = which (solvers{i});
+    if (! strcmp (w, fullfile (mdir, [solvers{i} ".m"])))
+      printf ("FAIL: %s resolves to '%s', not to %s\n", solvers{i}, w,
+              fullfile (mdir, [solvers{i} ".m"]));
       nbad += 1;
     endif
   endfor

@@ -17,12 +17,14 @@
 %!   warning ("test_ctrlc: skipped: needs tests/ctrlc_test.sh, sh and mkfifo");
 %!   return;
 %! endif
-%! mexdir = fileparts (which ("odeSPVI"));
+%! ## the directories of the m-file front end and of its MEX gateway
+%! dirs = strjoin (unique ({fileparts(which ("odeSPVI")),
+%!                          fileparts(which ("__odeSPVI__"))}), pathsep ());
 %! octave = fullfile (OCTAVE_HOME (), "bin", "octave-cli");
 %! if (! exist (octave, "file"))
 %!   octave = "octave-cli";
 %! endif
-%! [status, out] = system (sprintf ("sh '%s' '%s' '%s' 2>&1", script, mexdir,
+%! [status, out] = system (sprintf ("sh '%s' '%s' '%s' 2>&1", script, dirs,
 %!                                  octave));
 %! if (status != 0 || numel (strfind (out, ": ok (MARKER 1")) != 5)
 %!   error ("ctrlc_test.sh failed (exit status %d):\n%s", status, out);

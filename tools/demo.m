@@ -8,8 +8,18 @@
 ## steps, the largest relative energy error over the run and over its last
 ## tenth, and the angular momentum error; writes the energy error over time
 ## to demo-energy.png.
+##
+## make demo runs it with the development tree's inst/ (the solvers'
+## m-files) and src/ (their MEX gateways) on the path; run by hand, it
+## adds them itself unless the solvers are there already (pkg load
+## symplectic).
 
 1;
+
+if (exist ("__odeSPVI__") != 3)
+  top = fileparts (fileparts (mfilename ("fullpath")));
+  addpath (fullfile (top, "inst"), fullfile (top, "src"));
+endif
 
 function [dy, ddy] = kepler (t, y)
   q = y(1:2);

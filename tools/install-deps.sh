@@ -4,15 +4,29 @@
 # tools/install-deps.sh -- make sure the build and test dependencies are
 # present; install the missing ones from Debian's packages.
 #
+#   sh tools/install-deps.sh           (make deps)
+#   sh tools/install-deps.sh memory    (make deps-memory)
+#
 # Checks: octave-cli, mkoctfile, a C compiler that links against LAPACK and
-# BLAS, valgrind.  When all are there it only checks (quick, no network);
-# otherwise it runs apt-get update + apt-get install once for the whole set
-# (as root, or through sudo when not root and sudo exists).
+# BLAS; with `memory`, valgrind too (only make check-memory and make
+# valgrind need it).  When all are there it only checks (quick, no
+# network); otherwise it runs apt-get update + apt-get install once for the
+# whole set (as root, or through sudo when not root and sudo exists).
 #
 # Environment: SYM_DEPS_FORCE=1 installs even if everything looks present.
 set -eu
 
-PACKAGES="octave octave-dev liblapack-dev libblas-dev valgrind"
+PACKAGES="octave octave-dev liblapack-dev libblas-dev"
+TOOLS="octave-cli mkoctfile"
+case "${1:-}" in
+  "") ;;
+  memory)
+    PACKAGES="$PACKAGES valgrind"
+    TOOLS="$TOOLS valgrind" ;;
+  *)
+    echo "usage: sh tools/install-deps.sh [memory]" >&2
+    exit 2 ;;
+esac
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -20,7 +34,7 @@ trap 'rm -rf "$tmp"' EXIT
 # Sets $missing to what is absent (empty when all is there).
 check () {
   missing=""
-  for c in octave-cli mkoctfile valgrind; do
+  for c in $TOOLS; do
     command -v "$c" >/dev/null 2>&1 || missing="$missing $c"
   done
   # LAPACK/BLAS dev libraries: check that a program links with them (file
@@ -37,7 +51,7 @@ check () {
 
 check
 if [ -z "$missing" ] && [ "${SYM_DEPS_FORCE:-0}" != 1 ]; then
-  echo "deps: ok (octave-cli, mkoctfile, LAPACK/BLAS, valgrind present)"
+  echo "deps: ok ($(echo $TOOLS | sed 's/ /, /g'), LAPACK/BLAS present)"
   exit 0
 fi
 

@@ -1,8 +1,10 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* odeSE.c -- MEX entry point of odeSE: its descriptor (mex/methods/se.c)
-   into the common entry (mex/entry.c). */
+/* __odeSE__.c -- MEX entry point of odeSE: its descriptor
+   (mex/methods/se.c) into the common entry (mex/entry.c).  Built as
+   __odeSE__.mex, the compiled gateway that inst/odeSE.m (its help and
+   tests) calls, as Octave's ode15s.m calls __ode15__. */
 #include "mex/symmex.h"
 
 void

@@ -1,8 +1,10 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* odeSV.c -- MEX entry point of odeSV: its descriptor (mex/methods/sv.c)
-   into the common entry (mex/entry.c). */
+/* __odeSV__.c -- MEX entry point of odeSV: its descriptor
+   (mex/methods/sv.c) into the common entry (mex/entry.c).  Built as
+   __odeSV__.mex, the compiled gateway that inst/odeSV.m (its help and
+   tests) calls, as Octave's ode15s.m calls __ode15__. */
 #include "mex/symmex.h"
 
 void
