@@ -35,8 +35,10 @@ fd_sizes (const sym_eval *ev, const double *y, double *size)
     }
   const double fl = ev->ytyp ? SYM_FD_FLOOR : 1.0;
   for (int half = 0; half < 2; half++)
-    low[half] = big[half] > 0 ? fl * big[half]
-                : big[1 - half] > 0 ? big[1 - half] : 1.0;
+    low[half] = fmax (big[half] > 0 ? fl * big[half]
+                      : big[1 - half] > 0 ? big[1 - half] : 1.0,
+                      /* a step of subnormal data: at least DBL_MIN */
+                      DBL_MIN / sqrt (DBL_EPSILON));
   for (int i = 0; i < 2 * d; i++)
     size[i] = fmax (size[i], low[i >= d]);
 }

@@ -96,8 +96,11 @@
    round-off level errors make no trend */
 #define SYM_CTRL_ERR_FLOOR 1e-2
 /* The least step is 16 ulps of t: t + h then moves by more than t's
-   round-off */
+   round-off; and 4 ulps of the span: a run creeping towards a
+   singularity stops, and a step that fails at every size fails about 52
+   times in a row at most (each failure after the first halves h) */
 #define SYM_HMIN_ULPS 16.0
+#define SYM_HMIN_SPAN 4.0
 /* what is left of the span after a step joins it when below this
    fraction of the span (or the least step) */
 #define SYM_SPAN_SLIVER 1e-10

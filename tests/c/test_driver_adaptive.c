@@ -204,6 +204,57 @@ scenario_tiny_spans (void)
          sym_status_name (st), SINK.nrows);
 }
 
+/* q' = p/t, p' = -q/t: singular at t = 0 */
+static int
+rhs_over_t (double t, const double *y, double *dy, void *u)
+{
+  (void) u;
+  dy[0] = y[1] / t;
+  dy[1] = -y[0] / t;
+  return 0;
+}
+
+/* q' = 1e10/t for t > 0: a step from 0 fails at every size */
+static int
+rhs_fails_always (double t, const double *y, double *dy, void *u)
+{
+  (void) y;
+  (void) u;
+  dy[0] = t > 0 ? 1e10 / t : 0.0;
+  dy[1] = 0.0;
+  return 0;
+}
+
+/* the step floor (4 ulps of the span): a run creeping towards a
+   singularity at tf stops close to it with SYM_ESTEPSIZE; a step that
+   fails at every size fails at most about 52 times (each failure after
+   the first halves h) */
+static void
+scenario_step_floor (void)
+{
+  drv_run r;
+  double y0[2] = { 1, 0 };
+  drv_setup (&r);
+  r.sys.rhs = rhs_over_t;
+  r.o.t0 = -1;
+  r.o.tf = 0;
+  int st = drv_integrate (&r, &drv_mid_type, y0);
+  CHECK (st == SYM_ESTEPSIZE && r.stats.t_reached < 0
+         && r.stats.t_reached > -1e-10 && r.stats.cnt.nsteps < 100000,
+         "creeping to 0: %s at t = %.3g after %ld steps",
+         sym_status_name (st), r.stats.t_reached, r.stats.cnt.nsteps);
+  double z[2] = { 0, 0 };
+  drv_setup (&r);
+  r.sys.rhs = rhs_fails_always;
+  r.o.tf = 1;
+  r.o.h0 = 1;
+  st = drv_integrate (&r, &drv_mid_type, z);
+  CHECK (st == SYM_ESTEPSIZE && r.stats.cnt.nsteps == 0
+         && r.stats.cnt.nfailed >= 10 && r.stats.cnt.nfailed <= 53,
+         "failing at every size: %s after %ld failed steps",
+         sym_status_name (st), r.stats.cnt.nfailed);
+}
+
 /* predictive step-size control (control.c).  A model error that grows
    along the run by g per step at a fixed h: err_n = c g^n h_n^(q+1).
    After two accepted steps the predicted factor meets it exactly: the
@@ -247,6 +298,7 @@ main (void)
   scenario_adaptive_backward ();
   scenario_maxstep_divides_span ();
   scenario_tiny_spans ();
+  scenario_step_floor ();
   scenario_predictive_control ();
   return tu_finish ("test_driver_adaptive");
 }

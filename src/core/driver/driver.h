@@ -30,7 +30,8 @@ typedef struct {
   double h, hmax;
   int user_hmax;
   int q;                   /* the order of the error estimate */
-  int last_rejected;
+  int last_rejected;       /* the last step tried was rejected */
+  double h_rejected;       /* the size of the last rejected step */
   double h_acc, err_acc;   /* the last accepted step (predictive control) */
   double tcomp;            /* the steps' sum minus t (round-off) */
   long jac_checked_at;     /* nsteps at the last sym_jac_check */

@@ -14,12 +14,17 @@
 /* what advance and commit return to go on (not a status of sym.h) */
 #define RUN_ON 1000
 
-/* The least step size at t: SYM_HMIN_ULPS ulps of t (at least the least
-   normal number), so that t + h moves by more than the round-off of t. */
+/* The least step size at t: SYM_HMIN_ULPS ulps of t, so that t + h moves
+   by more than the round-off of t, and SYM_HMIN_SPAN ulps of the span, so
+   that a run creeping towards a singularity (steps shrinking with the
+   distance to it) stops; at least the least double. */
 static double
-hmin_at (double t)
+hmin_at (const sym_run *r, double t)
 {
-  return fmax (SYM_HMIN_ULPS * DBL_EPSILON * fabs (t), DBL_MIN);
+  const double span = fabs (r->o->tf - r->o->t0);
+  return fmax (fmax (SYM_HMIN_ULPS * DBL_EPSILON * fabs (t),
+                     SYM_HMIN_SPAN * DBL_EPSILON * span),
+               nextafter (0.0, 1.0));
 }
 
 /* Map a recoverable cause that can no longer be cured to a fatal status.
@@ -202,7 +207,7 @@ schedule (sym_run *r, double *hs, double *tnew, int *last)
     {
       if (r->dir * (t - r->tend) >= 0)
         return 1;
-      const double rem = fabs (r->tend - t), hmin = hmin_at (t);
+      const double rem = fabs (r->tend - t), hmin = hmin_at (r, t);
       /* below the least step the round-off of t swamps the step: a
          smaller h is raised to it, a MaxStep the user set below it ends
          the run */
@@ -210,7 +215,7 @@ schedule (sym_run *r, double *hs, double *tnew, int *last)
       /* a remainder below the least step, or round-off of the span, joins
          this step */
       if (r->h >= rem
-          || rem - r->h <= fmax (SYM_SPAN_SLIVER * rem, hmin_at (r->tend)))
+          || rem - r->h <= fmax (SYM_SPAN_SLIVER * rem, hmin_at (r, r->tend)))
         {
           r->h = rem;
           *last = 1;
@@ -261,10 +266,10 @@ check_jacobian (sym_run *r, int st, int *again)
   return st;
 }
 
-/* A rejected step (status st > 0, or an overflow, or err > 1): a fatal
-   status, or SYM_SUCCESS with h shrunk */
+/* A rejected step of size hs (status st > 0, or an overflow, or err > 1):
+   a fatal status, or SYM_SUCCESS with h shrunk */
 static int
-reject (sym_run *r, int st, int overflow, double err)
+reject (sym_run *r, double hs, int st, int overflow, double err)
 {
   r->ev.st.cnt.nfailed++;
   if (r->fixed)
@@ -274,9 +279,15 @@ reject (sym_run *r, int st, int overflow, double err)
                : sym_step_factor (err, r->q, SYM_CTRL_FACMIN, 1.0);
   if (st == 0 && r->last_rejected)
     fac = fmin (fac, SYM_CTRL_FACFAIL);
+  /* failed at the least step, or nothing shorter was tried than at the
+     last rejection (a remainder of the span below the least step joins
+     the step): nothing smaller can be tried.  Each rejection after the
+     first at least halves h, so a run fails at most about 52 steps in a
+     row (log2 of the span over the least step) before it stops */
+  const int stuck = r->last_rejected && ! (fabs (hs) < r->h_rejected);
   r->last_rejected = 1;
-  /* failed at the least step: nothing smaller can be tried */
-  if (r->h <= hmin_at (r->t))
+  r->h_rejected = fabs (hs);
+  if (r->h <= hmin_at (r, r->t) || stuck)
     return st > 0 ? fatal_from (st, 1)
            : overflow ? SYM_EOVERFLOW : SYM_ESTEPSIZE;
   r->h *= fac;
@@ -369,7 +380,7 @@ advance (sym_run *r)
         err = sym_error_norm (n, r->yerr, r->y, r->ynew, &r->o->tol);
       if (st > 0 || overflow || (! r->fixed && ! (err <= 1.0)))
         {
-          if ((st = reject (r, st, overflow, err)))
+          if ((st = reject (r, hs, st, overflow, err)))
             return st;
           continue;
         }

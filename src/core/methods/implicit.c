@@ -152,8 +152,9 @@ sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
   sym_newton *nw = &k->nw;
   if (nw->have_matrix && fabs (h - k->h_mat) > SYM_REBUILD_H * fabs (k->h_mat))
     sym_newton_invalidate (nw);
-  if (! (sc > 0.0))
-    sc = 1.0;
+  /* no scale: 1; a subnormal one: the least normal number, so that the
+     corrections of subnormal data are measured against their quantum */
+  sc = sc > 0.0 ? fmax (sc, DBL_MIN) : 1.0;
   for (int i = 0; i < d; i++)
     scale[i] = sc;
   for (int round = 0; round < SYM_KEPT_ROUNDS; round++)

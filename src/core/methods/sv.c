@@ -155,10 +155,13 @@ sv_trap_error (sv_state *s, sym_eval *ev, int cont, double *yerr)
   const double h = tr->h;
   if (cont && cu->have_f0 && cu->h * h > 0.0)
     {
-      const double hp = cu->h, c = h * h * h / (6.0 * (h + hp));
+      /* (h^3 / (6 (h + hp))) times the divided difference, as h times
+         differences of f and ratios of steps: no power of h, which
+         overflows for huge spans and underflows for tiny ones */
+      const double hp = cu->h, r = h / (6.0 * (h + hp)), q = h / hp;
       for (int i = 0; i < n; i++)
-        yerr[i] += c * ((tr->f1[i] - tr->f0[i]) / h
-                        - (tr->f0[i] - cu->f0[i]) / hp);
+        yerr[i] += h * (r * ((tr->f1[i] - tr->f0[i])
+                             - q * (tr->f0[i] - cu->f0[i])));
       return SYM_SUCCESS;
     }
   double *ym = s->ym;

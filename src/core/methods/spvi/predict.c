@@ -262,6 +262,10 @@ start_scale (spvi_state *s, const double *y, double h, int adaptive)
     }
   S.q = adaptive || ! (sq > 0) ? S.all : sq;
   S.p = adaptive || ! (sp > 0) ? S.all : sp;
+  /* subnormal data: corrections measured against their quantum */
+  S.q = fmax (S.q, DBL_MIN);
+  S.p = fmax (S.p, DBL_MIN);
+  S.all = fmax (S.all, DBL_MIN);
   return S;
 }
 

@@ -1,0 +1,124 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* test_alloc_failure.c -- every allocation of a run may fail: with the
+   k-th allocation failing, for every k up to the count a run makes, each
+   method, fixed and adaptive, with events and dense output, returns
+   SYM_ENOMEM and frees all it took (the sanitizers see any use of NULL
+   or leak). */
+#include "sym.h"
+#include "driver_util.h"
+#include "testutil.h"
+
+#include <stdlib.h>
+
+static long n_alloc, n_live, fail_at;
+
+static void *
+counting_alloc (size_t nbytes)
+{
+  if (++n_alloc == fail_at)
+    return NULL;
+  void *p = malloc (nbytes);
+  if (p)
+    n_live++;
+  return p;
+}
+
+static void
+counting_free (void *p)
+{
+  n_live--;
+  free (p);
+}
+
+static int
+event_q (double t, const double *y, double *value, int *isterminal,
+         int *direction, void *user)
+{
+  (void) t;
+  (void) user;
+  value[0] = y[0];
+  isterminal[0] = 0;
+  direction[0] = 0;
+  return 0;
+}
+
+static int
+dense_sink (double t, double tnew, int k, const double *y, void *user)
+{
+  (void) t;
+  (void) tnew;
+  (void) k;
+  (void) y;
+  (void) user;
+  return 0;
+}
+
+/* runs of the oscillator on [0, 2] failing the k-th allocation, k = 1,
+   2, ... until one makes no more allocations than k - 1 and succeeds */
+static void
+failing_runs (const char *what, const sym_stepper_type *type,
+              const void *own, double h_fixed)
+{
+  double y0[2] = { 1, 0 };
+  long k;
+  int ok = 1;
+  for (k = 1; k < 10000; k++)
+    {
+      drv_run r;
+      drv_setup (&r);
+      r.o.tf = 2;
+      r.o.h_fixed = h_fixed;
+      r.o.nevents = 1;
+      r.o.events = event_q;
+      r.o.dense_out = dense_sink;
+      r.mo.own = own;
+      n_alloc = n_live = 0;
+      fail_at = k;
+      int st = drv_integrate (&r, type, y0);
+      if (n_live != 0)
+        {
+          CHECK (0, "%s: %ld blocks not freed with allocation %ld failing",
+                 what, n_live, k);
+          ok = 0;
+        }
+      if (n_alloc < k)
+        {
+          CHECK (st == SYM_DONE, "%s: %s without a failing allocation",
+                 what, sym_status_name (st));
+          break;
+        }
+      if (st != SYM_ENOMEM)
+        {
+          CHECK (0, "%s: %s with allocation %ld failing", what,
+                 sym_status_name (st), k);
+          ok = 0;
+        }
+    }
+  CHECK (ok && k > 3 && k < 10000, "%s: %ld allocations", what, k - 1);
+}
+
+int
+main (void)
+{
+  sym_set_allocator (counting_alloc, counting_free);
+  sym_onestep_opts sep = { 1 }, impl = { 0 };
+  sym_spvi_opts sp = { 0, 0, SYM_MATRIX_AUTO };
+  const struct {
+    const char *name;
+    const sym_stepper_type *const *type;
+    const void *own;
+  } m[] = { { "SE explicit", &sym_step_se, &sep },
+            { "SE implicit", &sym_step_se, &impl },
+            { "SV explicit", &sym_step_sv, &sep },
+            { "SV implicit", &sym_step_sv, &impl },
+            { "SPVI", &sym_step_spvi, &sp } };
+  for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
+    {
+      failing_runs (m[i].name, *m[i].type, m[i].own, 0.0);
+      failing_runs (m[i].name, *m[i].type, m[i].own, 0.1);
+    }
+  sym_set_allocator (NULL, NULL);
+  return tu_finish ("test_alloc_failure");
+}
