@@ -78,9 +78,9 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
 
   sym_stats st;
   int status = sym_integrate (*m->type, &sys, &mo, &dopt, a.y0, &st);
-  /* the probe of FCN at (t0, y0) evaluated it once */
-  st.cnt.nrhs++;
-  st.cnt.nrhs_states++;
+  /* the probe of FCN at (t0, y0), and of its Vectorized form */
+  st.cnt.nrhs += c->probe_calls;
+  st.cnt.nrhs_states += c->probe_states;
 
   if (o.outputfcn)
     symmex_outputfcn (c, NULL, 0, NULL, "done");

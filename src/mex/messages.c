@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *
@@ -154,6 +155,18 @@ symmex_report (const symmex_method *m, const void *own,
       break;
     case SYM_ENOMEM:
       mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory", name);
+      break;
+    case SYM_EOUTPUT:
+      /* an output buffer could not grow: the outputs built from it would
+         need as much again, so an error (with the buffers freed) rather
+         than the rows so far */
+      if (! c->oom)
+        mexErrMsgIdAndTxt ("symplectic:internal", "%s: internal failure "
+                           "(%s)", name, sym_status_name (status));
+      mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory for the "
+                         "output after t = %.15g (%lu rows); ask for less: "
+                         "fewer output times in TSPAN, a smaller Refine, or "
+                         "Dense off", name, tlast, (unsigned long) c->nrows);
       break;
     case SYM_ECALLBACK:
       mexWarnMsgIdAndTxt ("symplectic:callback", "%s: a callback failed at "

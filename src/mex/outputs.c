@@ -82,15 +82,49 @@ symmex_outputfcn (symmex_ctx *c, const double *t, int nt, const double *y,
   return stop;
 }
 
+/* *p grown to cap items of size bytes each: 0 when that does not fit (the
+   block stays as it was: mxRealloc returns NULL then, it does not raise
+   an error as mxMalloc does) */
+static int
+grow (void **p, size_t cap, size_t size)
+{
+  if (size && cap > (size_t) -1 / size)
+    return 0;
+  void *q = mxRealloc (*p, cap * size);
+  if (! q)
+    return 0;
+  *p = q;
+  return 1;
+}
+
+/* The capacity after cap (at least first), or 0 and c->oom when the
+   arrays (item sizes in sizes, k of them) cannot grow to it */
+static size_t
+grow_all (symmex_ctx *c, size_t cap, size_t first, void **arrays[],
+          const size_t *sizes, int k)
+{
+  const size_t want = cap ? 2 * cap : first;
+  for (int i = 0; i < k; i++)
+    if (! grow (arrays[i], want, sizes[i]))
+      {
+        c->oom = 1;
+        return 0;
+      }
+  return want;
+}
+
 int
 symmex_sink_row (double t, const double *y, void *user)
 {
   symmex_ctx *c = user;
   if (c->nrows == c->cap)
     {
-      c->cap = c->cap ? 2 * c->cap : 256;
-      c->tbuf = mxRealloc (c->tbuf, sizeof (double) * c->cap);
-      c->ybuf = mxRealloc (c->ybuf, sizeof (double) * c->cap * c->n);
+      void **a[] = { (void **) &c->tbuf, (void **) &c->ybuf };
+      const size_t sz[] = { sizeof (double), sizeof (double) * c->n };
+      size_t cap = grow_all (c, c->cap, 256, a, sz, 2);
+      if (! cap)
+        return -1;
+      c->cap = cap;
     }
   c->tbuf[c->nrows] = t;
   memcpy (c->ybuf + c->nrows * c->n, y, sizeof (double) * c->n);
@@ -109,10 +143,13 @@ symmex_sink_event (double te, const double *ye, int ie, void *user)
   symmex_ctx *c = user;
   if (c->nev == c->evcap)
     {
-      c->evcap = c->evcap ? 2 * c->evcap : 16;
-      c->te = mxRealloc (c->te, sizeof (double) * c->evcap);
-      c->ye = mxRealloc (c->ye, sizeof (double) * c->evcap * c->n);
-      c->ie = mxRealloc (c->ie, sizeof (int) * c->evcap);
+      void **a[] = { (void **) &c->te, (void **) &c->ye, (void **) &c->ie };
+      const size_t sz[] = { sizeof (double), sizeof (double) * c->n,
+                            sizeof (int) };
+      size_t cap = grow_all (c, c->evcap, 16, a, sz, 3);
+      if (! cap)
+        return -1;
+      c->evcap = cap;
     }
   c->te[c->nev] = te;
   memcpy (c->ye + c->nev * c->n, ye, sizeof (double) * c->n);
@@ -128,9 +165,12 @@ symmex_sink_dense (double t, double tnew, int k, const double *y, void *user)
   const size_t per = (size_t) c->n * (k + 2);
   if (c->nsteps == c->dcap)
     {
-      c->dcap = c->dcap ? 2 * c->dcap : 256;
-      c->dt = mxRealloc (c->dt, sizeof (double) * 2 * c->dcap);
-      c->dy = mxRealloc (c->dy, sizeof (double) * c->dcap * per);
+      void **a[] = { (void **) &c->dt, (void **) &c->dy };
+      const size_t sz[] = { 2 * sizeof (double), sizeof (double) * per };
+      size_t cap = grow_all (c, c->dcap, 256, a, sz, 2);
+      if (! cap)
+        return -1;
+      c->dcap = cap;
     }
   c->dk = k;
   c->dt[2 * c->nsteps] = t;

@@ -46,6 +46,59 @@ check_nargin (const symmex_ctx *c, const mxArray *fcn)
                      k == 1 ? "" : "s", ps, follow);
 }
 
+/* Vectorized: FCN (t, Y) must give, in column j, FCN (t, Y(:,j)).
+   Checked once, on y0 and a state near it, against single calls (an FCN
+   that indexes y linearly gives a matrix of the right size but mixes the
+   columns); skipped where f is not finite there (the edge of its
+   domain) */
+static void
+check_vectorized (symmex_ctx *c, const symmex_args *a, const double *f0)
+{
+  const int n = c->n;
+  double *y1 = mxMalloc (sizeof (double) * 6 * n), *f1 = y1 + n;
+  double *Y = y1 + 2 * n, *F = y1 + 4 * n;
+  double tt[2] = { a->tspan[0], a->tspan[0] };
+  for (int i = 0; i < n; i++)
+    {
+      y1[i] = a->y0[i] + 1e-3 * (fabs (a->y0[i]) + 1.0) * (i % 2 ? -1 : 1);
+      Y[i] = a->y0[i];
+      Y[n + i] = y1[i];
+    }
+  symmex_cb_rhs (a->tspan[0], y1, f1, c);
+  symmex_cb_rhs_batch (2, tt, Y, F, c);
+  c->probe_calls += 2;
+  c->probe_states += 3;
+  double big = 0.0, dif = 0.0;
+  int col = 1;
+  for (int i = 0; i < n; i++)
+    {
+      if (! isfinite (f1[i]) || ! isfinite (F[n + i]))
+        {
+          mxFree (y1);
+          return;
+        }
+      big = fmax (big, fmax (fabs (f0[i]), fabs (f1[i])));
+      if (fabs (F[i] - f0[i]) > dif)
+        {
+          dif = fabs (F[i] - f0[i]);
+          col = 1;
+        }
+      if (fabs (F[n + i] - f1[i]) > dif)
+        {
+          dif = fabs (F[n + i] - f1[i]);
+          col = 2;
+        }
+    }
+  mxFree (y1);
+  if (dif > 1e-10 * big)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Vectorized is on, but FCN does "
+                       "not evaluate the columns of Y one by one: column %d "
+                       "of FCN (t, Y) differs from FCN (t, Y(:,%d)) by %.3g "
+                       "at t = %.15g; make FCN take a 2d-by-k Y, or set "
+                       "Vectorized off", c->solver, col, col, dif,
+                       a->tspan[0]);
+}
+
 /* FCN at (t0, y0): its size and values, and (probe_hess) whether it gives
    the Hessian as a second output; returns that */
 static int
@@ -68,6 +121,7 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
     }
   if (! out[0])
     symmex_call (1, out, c->nargs, c->args, c->fname);
+  c->probe_calls = c->probe_states = 1;
   const double *f0 = symmex_checked (c, &out[0], n, "FCN", 0, a->tspan[0],
                                      "a vector of %d real elements", n);
   for (int i = 0; i < n; i++)
@@ -76,6 +130,8 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
                          "(element %d) at t = %.15g, the initial point",
                          c->solver, SYMMEX_NUM (f0[i], "%g"), i + 1,
                          a->tspan[0]);
+  if (c->o->vectorized)
+    check_vectorized (c, a, f0);
   if (have2)
     symmex_checked (c, &out[1], symmex_hessian_shape (out[1], n)
                     ? (size_t) n * n : (size_t) -1, "FCN (second output)",

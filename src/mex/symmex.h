@@ -144,6 +144,8 @@ typedef struct {
   size_t nev, evcap;
   /* the names the user's functions are called by, or "" (feval) */
   char fname[64], jname[64], ename[64], oname[64];
+  long probe_calls, probe_states;  /* calls of FCN before the run */
+  int oom;                     /* an output buffer could not grow */
   const char *nonfinite_what;  /* which function last returned NaN/Inf */
   double nonfinite_t;          /* and at which t */
   /* sol's dense output: each step's [t; tnew] and its dense samples
