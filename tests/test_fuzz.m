@@ -7,7 +7,8 @@
 ## end in a result or in an Octave error (caught here), never in a crash
 ## or a hang; a result must have the documented shape.  Each call is kept
 ## cheap (short TSPAN, MaxSteps = 50, few fixed steps) so that the whole
-## run takes well under a minute.
+## run takes well under a minute, and must return within 2 s.  The second
+## test runs hostile but valid problems without MaxSteps.
 ##
 ## To see each case before it runs (to find one that crashes Octave):
 ##   setenv ("SYMPLECTIC_FUZZ_VERBOSE", "1"); test test_fuzz
@@ -255,6 +256,7 @@
 %!             numel (args), nout, desc);
 %!     fflush (stdout);
 %!   endif
+%!   tcall = tic ();
 %!   try
 %!     ## Stats = "on" (or 1, or true) prints: keep the log clean (evalc)
 %!     quiet = numel (args) > 3 && isstruct (args{4}) && isfield (args{4}, "Stats");
@@ -298,6 +300,10 @@
 %!     ids{end+1} = err.identifier;
 %!     nerr += 1;
 %!   end_try_catch
+%!   secs = toc (tcall);
+%!   if (secs > 2)
+%!     error ("fuzz call %d (%s:%s) took %.1f s", k, func2str (s), desc, secs);
+%!   endif
 %! endfor
 %! el = toc (tstart);
 %! [u, ~, j] = unique (ids);
@@ -310,3 +316,114 @@
 %! assert (nres + nerr, ncalls);
 %! ## both outcomes must be common, or the fuzzer tests little
 %! assert (nres > 500 && nerr > 3000);
+
+## Hostile but valid problems: singularities at, inside and just past the
+## span; huge, tiny and subnormal data, times and spans; f that is
+## discontinuous, blows up, turns NaN, or is not vectorized; odd
+## tolerances and steps.  Each combination asks for a bounded amount of
+## work; no MaxSteps.
+%!function [args, desc] = fz_hostile (s)
+%!  pick = @(c) c{fz_ri(numel (c))};
+%!  any_c = {1, 1e-320, 1e-300, 1e300, 1e150};
+%!  ## name, f, data scales, start times, span lengths
+%!  rhs = {"osc", @(t, y) [y(2); -y(1)], any_c, ...
+%!         {0, -1, 1e6, 1e117, 1e300, -1e-300, 1e-320}, {1, 10, -5, 1e-10, 1e-300, 1e-320};
+%!         "1/sqrt(1-t)", @(t, y) [y(2); -y(1)] / sqrt (1 - t), any_c, ...
+%!         {0, 0.5, 1 - 1e-10}, {1, 2, -1};
+%!         "1/t", @(t, y) [y(2); -y(1)] / t, any_c, {-1, -1e-10, -1e-300, 1}, {1, 2, -1};
+%!         "1/(t-0.5)", @(t, y) [y(2); -y(1)] / (t - 0.5), any_c, {0, 1e-320}, {1, -1};
+%!         "zero", @(t, y) [0; 0], any_c, {0, 1e6, 1e117, 1e125, 1e300, -1e300, 1e-320}, ...
+%!         {1, 1e-10, 1e110, 1e200, 1e300, -1e200, 1e-320};
+%!         "slow", @(t, y) 1e-200 * [y(2); -y(1)], any_c, {0, 1e117, -1e200}, {1e200, 1e150, -3e200};
+%!         "fast", @(t, y) 1e200 * [y(2); -y(1)], any_c, {0, 1e-320, 1e-150}, {1e-200, 5e-200, -1e-200};
+%!         "exp", @(t, y) [y(2); -y(1)] * exp (t), any_c, {0, -100, 1}, {1, 3, -100};
+%!         "sign", @(t, y) [y(2); -sign(y(1))], {1, 10}, {0, 1e6}, {1, 10, -1};
+%!         "cubic", @(t, y) [y(2); -y(1)^3], {1, 2}, {0, -1}, {1, 10};
+%!         "blowup", @(t, y) [y(2)^2; -y(1)], {1, -1, 3}, {0}, {1, 10, -10};
+%!         "nan", @(t, y) [y(2); -y(1)] ./ (t <= 0.3), any_c, {0}, {1};
+%!         "nonvec", @(t, y) [y(end/2+1:end); -y(1:end/2)], any_c, {0, 1e300}, {1, 1e-10};
+%!         "stiff", @(t, y) [y(2); -1e8 * y(1)], any_c, {0, 1e6}, {1e-3, -1e-3}};
+%!  j = fz_ri (rows (rhs));
+%!  c = pick (rhs{j,3});
+%!  t0 = pick (rhs{j,4});
+%!  tf = t0 + pick (rhs{j,5});
+%!  if (tf == t0)
+%!    tf = t0 + 8 * eps (t0) + 1e-320;
+%!  endif
+%!  tf = max (min (tf, realmax), -realmax);
+%!  len = abs (tf - t0);
+%!  opts = struct ();
+%!  for m = 1:fz_ri (0, 3)
+%!    switch (fz_ri (10))
+%!      case 1,  opts.RelTol = pick ({1e-3, 1e-5, 1, 0.5});
+%!      case 2,  opts.AbsTol = pick ({1e-6, 1e-8, 1e300, max(1e-6 * c, 1e-323)});
+%!      case 3,  opts.InitialStep = pick ({1e-300, 1e-320, 1e-10, 1e300, 0.5});
+%!      case 4,  opts.MaxStep = pick ({len / 1e3, 1e300, 0.5});
+%!      case 5,  opts.TimeStepNumber = pick ({1, 10, 1e3, 1e4});
+%!      case 6,  opts.TimeStepSize = len / pick ({1, 10, 1e3, 1e4});
+%!      case 7,  opts.Vectorized = "on";
+%!      case 8,  opts.Separable = "on";
+%!      case 9,  opts.NormControl = "on";
+%!      case 10, opts.MaxNewtonIterations = pick ({1, 2, 50});
+%!    endswitch
+%!  endfor
+%!  opts.Refine = 1;
+%!  args = {rhs{j,2}, [t0 tf], c * [1; 0], opts};
+%!  desc = sprintf ("%s, y0 = %g [1; 0], tspan = [%.17g %.17g]", rhs{j,1}, c, t0, tf);
+%!  f = fieldnames (opts);
+%!  for i = 1:numel (f)
+%!    v = opts.(f{i});
+%!    if (! ischar (v))
+%!      v = sprintf ("%.17g", v);
+%!    endif
+%!    desc = [desc, ", ", f{i}, " = ", v];
+%!  endfor
+%!endfunction
+
+%!test
+%! ## hostile runs: each returns within seconds, on its own: at tf; or
+%! ## short of it with a warning naming the solver and t, and the finite
+%! ## solution so far; or with an error naming the solver (or FCN's own)
+%! rand ("state", 20261127);
+%! solvers = {@odeSE, @odeSV, @odeSPVI};
+%! ncalls = 900;
+%! slowest = 0;
+%! outcome = zeros (1, 3);
+%! for k = 1:ncalls
+%!   s = solvers{mod (k, 3) + 1};
+%!   name = func2str (s);
+%!   [args, desc] = fz_hostile ();
+%!   what = sprintf ("hostile call %d: %s %s", k, name, desc);
+%!   lastwarn ("");
+%!   t0 = tic ();
+%!   try
+%!     evalc ("[t, y] = s (args{:});");
+%!     secs = toc (t0);
+%!     [msg, id] = lastwarn ();
+%!     tspan = args{2};
+%!     assert (iscolumn (t) && t(1) == tspan(1), what);
+%!     assert (all (sign (tspan(2) - tspan(1)) * diff (t) > 0), what);
+%!     assert (all (isfinite (y(:))), what);
+%!     if (t(end) == tspan(end) || isfield (args{4}, "TimeStepNumber"))
+%!       outcome(1) += 1;
+%!     else
+%!       assert (strncmp (id, "symplectic:", 11), what);
+%!       assert (! isempty (regexp (msg, ["^" name ": .*t = "])), [what ": " msg]);
+%!       outcome(2) += 1;
+%!     endif
+%!   catch err
+%!     secs = toc (t0);
+%!     if (strncmp (err.message, "ASSERT", 6) || strncmp (err.message, "hostile", 7))
+%!       rethrow (err);
+%!     endif
+%!     assert (strncmp (err.message, [name ": "], numel (name) + 2)
+%!             || strcmp (err.identifier, "Octave:nonconformant-args"),
+%!             [what ": " err.message]);
+%!     outcome(3) += 1;
+%!   end_try_catch
+%!   assert (secs < 5, sprintf ("%s took %.1f s", what, secs));
+%!   slowest = max (slowest, secs);
+%! endfor
+%! printf ("test_fuzz: %d hostile calls: %d reached tf, %d stopped with a warning, %d errors; slowest %.2f s\n",
+%!         ncalls, outcome, slowest);
+%! assert (all (outcome > 50));
