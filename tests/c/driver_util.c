@@ -6,6 +6,7 @@
 #include "driver_util.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 drv_sink SINK;
@@ -260,6 +261,27 @@ drv_setup (drv_run *r)
   r->o.event_out = drv_out_event;
   r->o.event_user = NULL;
   memset (&SINK, 0, sizeof SINK);
+}
+
+long drv_alloc_count, drv_alloc_live, drv_alloc_fail_at;
+
+void *
+drv_counting_alloc (size_t nbytes)
+{
+  if (++drv_alloc_count == drv_alloc_fail_at)
+    return NULL;
+  void *p = malloc (nbytes);
+  if (p)
+    drv_alloc_live++;
+  return p;
+}
+
+void
+drv_counting_free (void *p)
+{
+  if (p)
+    drv_alloc_live--;
+  free (p);
 }
 
 int

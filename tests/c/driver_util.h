@@ -12,7 +12,9 @@
      step it asks of the driver;
    - "midpoint": the explicit midpoint rule (order 2) with the Euler
      step as embedded estimate (err = O(h^2)), cubic Hermite dense
-     output. */
+     output.
+   It also has an allocator that fails on demand, for the tests of
+   allocation failures. */
 #ifndef DRIVER_UTIL_H
 #define DRIVER_UTIL_H
 
@@ -51,6 +53,14 @@ extern drv_sink SINK;
 
 int drv_out_row (double t, const double *y, void *u);
 int drv_out_event (double te, const double *ye, int ie, void *u);
+
+/* ------------------------------------------------------------ allocator */
+/* For sym_set_allocator: fails allocation number drv_alloc_fail_at (from
+   1; 0: none) of those counted in drv_alloc_count, and keeps the number
+   of blocks not yet freed in drv_alloc_live */
+extern long drv_alloc_count, drv_alloc_live, drv_alloc_fail_at;
+void *drv_counting_alloc (size_t nbytes);
+void drv_counting_free (void *p);
 
 /* ------------------------------------------------------------ runs */
 /* A run of the oscillator and what it found out */

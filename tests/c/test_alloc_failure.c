@@ -10,28 +10,6 @@
 #include "driver_util.h"
 #include "testutil.h"
 
-#include <stdlib.h>
-
-static long n_alloc, n_live, fail_at;
-
-static void *
-counting_alloc (size_t nbytes)
-{
-  if (++n_alloc == fail_at)
-    return NULL;
-  void *p = malloc (nbytes);
-  if (p)
-    n_live++;
-  return p;
-}
-
-static void
-counting_free (void *p)
-{
-  n_live--;
-  free (p);
-}
-
 static int
 event_q (double t, const double *y, double *value, int *isterminal,
          int *direction, void *user)
@@ -74,16 +52,16 @@ failing_runs (const char *what, const sym_stepper_type *type,
       r.o.events = event_q;
       r.o.dense_out = dense_sink;
       r.mo.own = own;
-      n_alloc = n_live = 0;
-      fail_at = k;
+      drv_alloc_count = drv_alloc_live = 0;
+      drv_alloc_fail_at = k;
       int st = drv_integrate (&r, type, y0);
-      if (n_live != 0)
+      if (drv_alloc_live != 0)
         {
           CHECK (0, "%s: %ld blocks not freed with allocation %ld failing",
-                 what, n_live, k);
+                 what, drv_alloc_live, k);
           ok = 0;
         }
-      if (n_alloc < k)
+      if (drv_alloc_count < k)
         {
           CHECK (st == SYM_DONE, "%s: %s without a failing allocation",
                  what, sym_status_name (st));
@@ -102,7 +80,7 @@ failing_runs (const char *what, const sym_stepper_type *type,
 int
 main (void)
 {
-  sym_set_allocator (counting_alloc, counting_free);
+  sym_set_allocator (drv_counting_alloc, drv_counting_free);
   sym_onestep_opts sep = { 1 }, impl = { 0 };
   sym_spvi_opts sp = { 0, 0, SYM_MATRIX_AUTO };
   const struct {

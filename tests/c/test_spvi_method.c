@@ -7,6 +7,7 @@
    nodes.  The calls it makes are in test_spvi_calls.c, its adaptive
    steps and dense output in test_spvi_adaptive.c. */
 #include "sym.h"
+#include "driver_util.h"
 #include "testutil.h"
 #include "test_spvi_systems.h"
 
@@ -113,27 +114,6 @@ scenario_bad_steps (void)
 /* Allocation failures: fail the k-th allocation for every k until alloc
    and set_tolerances (the companion) succeed; each failure returns
    SYM_ENOMEM and leaves nothing allocated once the state is freed. */
-static long live_blocks, alloc_count, fail_alloc_at;
-
-static void *
-counting_alloc (size_t n)
-{
-  if (++alloc_count == fail_alloc_at)
-    return NULL;
-  void *p = malloc (n);
-  if (p)
-    live_blocks++;
-  return p;
-}
-
-static void
-counting_free (void *p)
-{
-  if (p)
-    live_blocks--;
-  free (p);
-}
-
 static void
 scenario_alloc_failures (void)
 {
@@ -141,13 +121,13 @@ scenario_alloc_failures (void)
   sym_method_opts o;
   sym_spvi_opts so;
   ts_opts (&o, &so, 4, 3);
-  sym_set_allocator (counting_alloc, counting_free);
+  sym_set_allocator (drv_counting_alloc, drv_counting_free);
   int nfail = 0, bad = 0;
   for (long k = 1; k < 1000; k++)
     {
       int st = 0;
-      alloc_count = 0;
-      fail_alloc_at = k;
+      drv_alloc_count = 0;
+      drv_alloc_fail_at = k;
       void *s = T->alloc (ev.dim, &o, &st);
       if (s && ! (st = ts_adaptive (T, s, 1e-6, 1e-6)))
         {
@@ -156,27 +136,27 @@ scenario_alloc_failures (void)
         }
       T->free (s);
       nfail++;
-      if (st != SYM_ENOMEM || live_blocks != 0)
+      if (st != SYM_ENOMEM || drv_alloc_live != 0)
         bad++;
     }
-  fail_alloc_at = 0;
-  CHECK (nfail > 10 && bad == 0 && live_blocks == 0,
-         "%d failures, %d bad, %ld blocks live", nfail, bad, live_blocks);
+  drv_alloc_fail_at = 0;
+  CHECK (nfail > 10 && bad == 0 && drv_alloc_live == 0,
+         "%d failures, %d bad, %ld blocks live", nfail, bad, drv_alloc_live);
 
   /* the companion allocated lazily by a step that wants yerr */
-  alloc_count = 0;
+  drv_alloc_count = 0;
   void *s = T->alloc (ev.dim, &o, &(int) { 0 });
-  fail_alloc_at = alloc_count + 1;
+  drv_alloc_fail_at = drv_alloc_count + 1;
   double y[4], yn[4], ye[4];
   ts_kep_y0 (0.6, y);
   int st = T->step (s, &ev, 0.0, 0.05, 0.05, y, yn, ye);
   CHECK (st == SYM_ENOMEM, "lazy companion: %d", st);
-  fail_alloc_at = 0;
+  drv_alloc_fail_at = 0;
   st = T->step (s, &ev, 0.0, 0.05, 0.05, y, yn, ye);
   CHECK (st == 0, "then fine: %d", st);
   T->free (s);
   sym_set_allocator (NULL, NULL);
-  CHECK (live_blocks == 0, "%ld blocks live", live_blocks);
+  CHECK (drv_alloc_live == 0, "%ld blocks live", drv_alloc_live);
 }
 
 /* ---------------------------------------------------------------- orders */
