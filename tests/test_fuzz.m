@@ -322,7 +322,7 @@
 ## discontinuous, blows up, turns NaN, or is not vectorized; odd
 ## tolerances and steps.  Each combination asks for a bounded amount of
 ## work; no MaxSteps.
-%!function [args, desc] = fz_hostile (s)
+%!function [args, desc] = fz_hostile ()
 %!  pick = @(c) c{fz_ri(numel (c))};
 %!  any_c = {1, 1e-320, 1e-300, 1e300, 1e150};
 %!  ## name, f, data scales, start times, span lengths
