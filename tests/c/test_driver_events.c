@@ -105,23 +105,32 @@ ev_twin (double t, const double *y, double *v, int *term, int *dir, void *u)
   return 0;
 }
 
+/* A run of the exact flow with h = 0.3 and the events of ev_fn,
+   terminal and of direction as given (event sink kept or not) */
+static int
+run_ev_fn (drv_run *r, int terminal, int direction, int sink_events)
+{
+  static ev_user eu;
+  double y0[2] = { 1, 0 };
+  eu.terminal = terminal;
+  eu.direction = direction;
+  drv_setup (r);
+  r->o.h_fixed = 0.3;
+  r->o.nevents = 2;
+  r->o.events = ev_fn;
+  r->o.event_user = &eu;
+  if (! sink_events)
+    r->o.event_out = NULL;
+  return drv_integrate (r, &drv_exact_type, y0);
+}
+
 /* events with the exact flow: zeros of q at pi/2 + k pi, and of
    p - 0.5 rising at 2 pi - pi/6 + 2 k pi, located to round-off */
 static void
 scenario_events_located (void)
 {
   drv_run r;
-  double y0[2] = { 1, 0 };
-  int st;
-  static ev_user eu;
-  eu.terminal = 0;
-  eu.direction = 0;
-  drv_setup (&r);
-  r.o.h_fixed = 0.3;
-  r.o.nevents = 2;
-  r.o.events = ev_fn;
-  r.o.event_user = &eu;
-  st = drv_integrate (&r, &drv_exact_type, y0);
+  int st = run_ev_fn (&r, 0, 0, 1);
   CHECK (st == SYM_DONE, "events run %s", sym_status_name (st));
   int nq = 0, np = 0, ordered = 1;
   double eq = 0, ep = 0;
@@ -154,18 +163,7 @@ static void
 scenario_terminal_event (void)
 {
   drv_run r;
-  double y0[2] = { 1, 0 };
-  int st;
-  static ev_user eu;
-  eu.terminal = 1;
-  eu.direction = -1;
-  drv_setup (&r);
-  r.o.h_fixed = 0.3;
-  r.o.nevents = 2;
-  r.o.events = ev_fn;
-  r.o.event_user = &eu;
-  r.o.event_out = NULL;
-  st = drv_integrate (&r, &drv_exact_type, y0);
+  int st = run_ev_fn (&r, 1, -1, 0);
   CHECK (st == SYM_STOP_EVENT, "status %s", sym_status_name (st));
   CHECK_CLOSE (SINK.t[SINK.nrows - 1], M_PI / 2, 1e-14, "terminal event time");
   CHECK_CLOSE (SINK.y[SINK.nrows - 1][0], 0.0, 1e-14, "terminal event value");
@@ -178,18 +176,7 @@ static void
 scenario_rising_event (void)
 {
   drv_run r;
-  double y0[2] = { 1, 0 };
-  int st;
-  static ev_user eu;
-  eu.terminal = 1;
-  eu.direction = 1;
-  drv_setup (&r);
-  r.o.h_fixed = 0.3;
-  r.o.nevents = 2;
-  r.o.events = ev_fn;
-  r.o.event_user = &eu;
-  r.o.event_out = NULL;
-  st = drv_integrate (&r, &drv_exact_type, y0);
+  int st = run_ev_fn (&r, 1, 1, 0);
   CHECK (st == SYM_STOP_EVENT, "status");
   CHECK_CLOSE (SINK.t[SINK.nrows - 1], 3 * M_PI / 2, 1e-14, "rising event");
 }
