@@ -251,12 +251,44 @@ typedef struct {
   void (*free) (void *state);
 } sym_stepper_type;
 
-/* odeSE and odeSV: explicit steps for H = T(p) + V(q) */
+/* odeSE and odeSV: explicit steps for H = T(p) + V(q); second_order: f_q
+   = p identically (H = |p|^2/2 + V(q), y = [q; v]), so that the steps
+   call f for f_p only (implies separable).  The splitting stepper also
+   reads method (an index of sym_splittings) and compensated (compensated
+   summation of its explicit updates). */
 typedef struct {
   int separable;
+  int second_order;
+  int method;
+  int compensated;
 } sym_onestep_opts;
 extern const sym_stepper_type *const sym_step_se;
 extern const sym_stepper_type *const sym_step_sv;
+
+/* A composition or splitting method as data.  SYM_COMPOSITION: the step
+   is Stoermer-Verlet steps of gamma_i h, i = 1..stages (coef[i-1]), valid
+   for any H.  SYM_SPLITTING (separable H only): stages pairs of a kick p
+   += b_i h f_p(q) and then a drift q += a_i h f_q(p), coef = {a_1..a_s,
+   b_1..b_s}.  sym_splittings ends with a NULL name; its first row is
+   Stoermer-Verlet itself. */
+enum { SYM_COMPOSITION = 0, SYM_SPLITTING = 1 };
+typedef struct {
+  const char *name;
+  int kind;
+  int order;
+  int symmetric;
+  int stages;
+  const double *coef;
+  /* splittings that hold only for a quadratic T(p) (Nystrom methods) */
+  int nystrom;
+} sym_splitting;
+extern const sym_splitting sym_splittings[];
+/* the index of the method called name (any case), or -1 */
+int sym_splitting_find (const char *name);
+/* the splitting stepper: fixed steps of sym_splittings[own->method];
+   explicit (separable or second_order) or, for a composition, implicit
+   Stoermer-Verlet stages */
+extern const sym_stepper_type *const sym_step_splitting;
 
 /* odeSPVI: q_dofs Legendre modes of q, nodes Gauss-Legendre nodes (0:
    SYM_SPVI_NODES and nodes + 1); Newton's matrix kept across steps,

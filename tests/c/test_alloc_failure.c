@@ -3,9 +3,9 @@
 
 /* test_alloc_failure.c -- every allocation of a run may fail: with the
    k-th allocation failing, for every k up to the count a run makes, each
-   method, fixed and adaptive, with events and dense output, returns
-   SYM_ENOMEM and frees all it took (the sanitizers see any use of NULL
-   or leak). */
+   method, fixed and adaptive (the splitting stepper: fixed only), with
+   events and dense output, returns SYM_ENOMEM and frees all it took
+   (the sanitizers see any use of NULL or leak). */
 #include "sym.h"
 #include "driver_util.h"
 #include "testutil.h"
@@ -81,8 +81,11 @@ int
 main (void)
 {
   sym_set_allocator (drv_counting_alloc, drv_counting_free);
-  sym_onestep_opts sep = { 1 }, impl = { 0 };
+  sym_onestep_opts sep = { 1, 0, 0, 0 }, impl = { 0, 0, 0, 0 };
   sym_spvi_opts sp = { 0, 0, SYM_MATRIX_AUTO };
+  /* the splitting stepper: fixed steps of yoshida4, explicit (with
+     compensated sums) and implicit */
+  sym_onestep_opts y4e = { 1, 0, 1, 1 }, y4i = { 0, 0, 1, 0 };
   const struct {
     const char *name;
     const sym_stepper_type *const *type;
@@ -97,6 +100,8 @@ main (void)
       failing_runs (m[i].name, *m[i].type, m[i].own, 0.0);
       failing_runs (m[i].name, *m[i].type, m[i].own, 0.1);
     }
+  failing_runs ("yoshida4 explicit", sym_step_splitting, &y4e, 0.1);
+  failing_runs ("yoshida4 implicit", sym_step_splitting, &y4i, 0.1);
   sym_set_allocator (NULL, NULL);
   return tu_finish ("test_alloc_failure");
 }

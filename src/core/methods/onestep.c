@@ -28,7 +28,8 @@ sym_onestep_new (int dim, int order, size_t size,
   o->d = dim;
   o->n = 2 * dim;
   o->order = order;
-  o->separable = own && own->separable;
+  o->second_order = own && own->second_order;
+  o->separable = o->second_order || (own && own->separable);
   o->want_f = opts && opts->want_dense;
   return o;
 }
@@ -118,7 +119,7 @@ sym_recs_finish (sym_recs *r, sym_eval *ev, int want_f, double *yerr,
     {
       if ((st = sym_recs_f0 (r, ev)))
         return st;
-      if ((st = sym_rhs (ev, tr->tend, tr->y1, tr->f1)))
+      if (! tr->have_f1 && (st = sym_rhs (ev, tr->tend, tr->y1, tr->f1)))
         return st;
       tr->have_f1 = 1;
     }

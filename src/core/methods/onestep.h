@@ -43,7 +43,8 @@ int sym_recs_begin (sym_recs *r, double t, double h, double tend,
 /* f at the trial step's start, evaluated if not known */
 int sym_recs_f0 (sym_recs *r, sym_eval *ev);
 /* Finish the trial step whose end is in trial->y1: f at both ends when
-   want_f or yerr (one call at the end; the start's is shared), the
+   want_f or yerr (one call at the end unless the step has set it,
+   have_f1; the start's is shared), the
    estimate yerr = y1 - y0 - h/2 (f0 + f1), ynext. */
 int sym_recs_finish (sym_recs *r, sym_eval *ev, int want_f, double *yerr,
                      double *ynext);
@@ -212,6 +213,7 @@ typedef struct {
   int d, n;              /* y = [q; p] of n = 2d */
   int order;             /* of the method and of its error estimate */
   int separable;         /* H = T(p) + V(q): explicit steps */
+  int second_order;      /* f_q = p: no call for it (implies separable) */
   double *block;         /* the one allocation holding the arrays */
   sym_recs r;            /* last accepted step, step being tried */
   sym_fcache fc;         /* the last f evaluated */

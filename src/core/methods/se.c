@@ -22,7 +22,8 @@
 
    Separable H = T(p) + V(q): f_p does not depend on p and f_q not on q,
    so the step is explicit: f(t_k, [q_k; p_k]) gives p_{k+1}, f(t_k,
-   [q_k; p_{k+1}]) gives q_{k+1}.  Two calls a step.
+   [q_k; p_{k+1}]) gives q_{k+1}.  Two calls a step; one with
+   second_order (f_q = p: q_{k+1} = q_k + h p_{k+1}).
 
    Error estimate: err = y_{k+1} - y_k - (h/2) (f(t_k, y_k) + f(t_{k+1},
    y_{k+1})), the difference to the trapezoidal rule through the step
@@ -99,6 +100,12 @@ se_step (void *state, sym_eval *ev, double t, double h, double tend,
         return st;
       for (int i = 0; i < d; i++)
         p1[i] = p0[i] + h * tr->f0[d + i];
+      if (s->o.second_order)
+        {
+          for (int i = 0; i < d; i++)
+            q1[i] = q0[i] + h * p1[i];
+          return sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext);
+        }
       st = sym_fcache_f (&s->o.fc, ev, t, q0, p1);
       if (st)
         return st;

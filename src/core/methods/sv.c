@@ -31,7 +31,8 @@
      B = f(t_{k+1}, [q_{k+1}; p_{k+1/2}]) -> p_{k+1} = p_{k+1/2}
                                               + (h/2) f_p(q_{k+1})
    Two calls a step (plus one at a fresh start); A at the midpoint time
-   keeps the step symmetric for a T(t, p).
+   keeps the step symmetric for a T(t, p).  With second_order (f_q = p)
+   A is not called: one call a step, and f at the step's end is known.
 
    Error estimate, of the local error y_{k+1} - y(t_{k+1}):
      err = y_{k+1} - y_k - (h/2) (f(t_k, y_k) + f(t_{k+1}, y_{k+1}))
@@ -206,18 +207,25 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
         }
       for (int i = 0; i < d; i++)
         ph[i] = p0[i] + hh * fp[i];
-      st = sym_fcache_f (&s->o.fc, ev, t + hh, q0, ph);     /* A */
-      if (st)
-        return st;
-      for (int i = 0; i < d; i++)
-        q1[i] = q0[i] + h * s->o.fc.fw[i];
-      memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
+      if (s->o.second_order)
+        for (int i = 0; i < d; i++)
+          q1[i] = q0[i] + h * ph[i];
+      else
+        {
+          st = sym_fcache_f (&s->o.fc, ev, t + hh, q0, ph);     /* A */
+          if (st)
+            return st;
+          for (int i = 0; i < d; i++)
+            q1[i] = q0[i] + h * s->o.fc.fw[i];
+          memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
+        }
       st = sym_fcache_f (&s->o.fc, ev, tr->tend, q1, ph);   /* B */
       if (st)
         return st;
       /* f_q at p_{k+1/2} with q0 and with q1: the same if H is separable
          (and T does not depend on t) */
-      sym_sep_check (ev, t, d, s->fqa, s->o.fc.fw);
+      if (! s->o.second_order)
+        sym_sep_check (ev, t, d, s->fqa, s->o.fc.fw);
     }
   else
     {
@@ -252,6 +260,13 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
     {
       fpe[i] = s->o.fc.fw[d + i];
       p1[i] = ph[i] + hh * s->o.fc.fw[d + i];
+    }
+  if (s->o.second_order)
+    {
+      /* f at the end is [p_{k+1}; f_p(q_{k+1})]: no call */
+      memcpy (tr->f1, p1, (size_t) d * sizeof (double));
+      memcpy (tr->f1 + d, fpe, (size_t) d * sizeof (double));
+      tr->have_f1 = 1;
     }
   if ((st = sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext)))
     return st;
