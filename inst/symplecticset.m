@@ -49,6 +49,19 @@
 ## @qcode{"on"} when H = T(p) + V(q) (and no forcing depends on p):
 ## @code{odeSE} and @code{odeSV} then take explicit steps.  Default
 ## @qcode{"off"}.
+## @item SecondOrder
+## @qcode{"on"}: @code{odeSE} and @code{odeSV} take @var{fcn} as the
+## acceleration, @code{a = fcn (t, q)} = -dV/dq of unit masses, and y =
+## [q; v] (explicit steps, one call of @var{fcn} per force stage).
+## Default @qcode{"off"}.
+## @item Method
+## @code{odeSV}: the Verlet composition or splitting method to use
+## (@qcode{"verlet"}, @qcode{"yoshida4"}, @dots{}; the table is in
+## @code{help odeSV}).  Default @qcode{"verlet"}.
+## @item CompensatedSummation
+## @code{odeSV}: @qcode{"on"} sums the updates of explicit fixed steps
+## with compensation, which keeps the round-off of very long runs at
+## random-walk growth.  Default @qcode{"off"}.
 ## @item NewtonTol
 ## Stopping tolerance of Newton's method, relative to the size of q for
 ## the unknowns of q and to the size of p for those of p (in the units of
@@ -111,6 +124,7 @@ function opts = symplecticset (varargin)
   persistent fields = {"TimeStepSize", "TimeStepNumber", "Q_DoFs", ...
                        "Nodes", "P_DoFs", "PolynomialDegree", ...
                        "HamiltonianHessFcn", "Separable", "Explicit", ...
+                       "SecondOrder", "Method", "CompensatedSummation", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
                        "MaxSteps", "Hamiltonian", "Dense"};
   persistent odeset_fields = fieldnames (odeset ());
@@ -125,6 +139,9 @@ function opts = symplecticset (varargin)
     printf ("   PolynomialDegree:  integer, 1..39, []\n");
     printf (" HamiltonianHessFcn:  function handle, []\n");
     printf ("          Separable:  {[\"off\"], \"on\"}\n");
+    printf ("        SecondOrder:  {[\"off\"], \"on\"}\n");
+    printf ("             Method:  string, [\"verlet\"] (odeSV)\n");
+    printf ("CompensatedSummation: {[\"off\"], \"on\"}\n");
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");
     printf ("       NewtonMatrix:  {[\"auto\"], \"kept\", \"new\"}\n");

@@ -201,13 +201,17 @@ static void
 call_fcn (symmex_ctx *c, double t, const double *y, int nout, mxArray **out,
           double *dy)
 {
+  const int nf = c->nf;
   mxGetPr (c->args[1])[0] = t;
-  memcpy (mxGetPr (c->args[2]), y, sizeof (double) * c->n);
+  memcpy (mxGetPr (c->args[2]), y, sizeof (double) * nf);
   symmex_call (nout, out, c->nargs, c->args, c->fname);
-  const double *v = symmex_checked (c, out, c->n, "FCN", 0, t,
-                                    "a vector of %d real elements", c->n);
-  note_nonfinite (c, v, c->n, "FCN", t);
-  memcpy (dy, v, sizeof (double) * c->n);
+  const double *v = symmex_checked (c, out, nf, "FCN", 0, t,
+                                    "a vector of %d real elements", nf);
+  note_nonfinite (c, v, nf, "FCN", t);
+  /* SecondOrder: f = [v; a] */
+  if (c->second_order)
+    memcpy (dy, y + nf, sizeof (double) * nf);
+  memcpy (dy + (c->n - nf), v, sizeof (double) * nf);
   mxDestroyArray (out[0]);
 }
 
@@ -238,27 +242,42 @@ symmex_cb_rhs_batch (int k, const double *t, const double *y, double *dy,
       c->batch_t[0] = c->batch_y[0] = NULL;
       c->big_k = k;
     }
+  const int n = c->n, nf = c->nf;
   if (! c->batch_t[slot])
     {
       c->batch_t[slot] = mxCreateDoubleMatrix (1, k, mxREAL);
-      c->batch_y[slot] = mxCreateDoubleMatrix (c->n, k, mxREAL);
+      c->batch_y[slot] = mxCreateDoubleMatrix (nf, k, mxREAL);
     }
   mxArray *t1 = c->args[1], *y1 = c->args[2];
   c->args[1] = c->batch_t[slot];
   c->args[2] = c->batch_y[slot];
   memcpy (mxGetPr (c->args[1]), t, sizeof (double) * k);
-  memcpy (mxGetPr (c->args[2]), y, sizeof (double) * c->n * k);
+  if (c->second_order)
+    for (int j = 0; j < k; j++)
+      memcpy (mxGetPr (c->args[2]) + (size_t) j * nf, y + (size_t) j * n,
+              sizeof (double) * nf);
+  else
+    memcpy (mxGetPr (c->args[2]), y, sizeof (double) * n * k);
   mxArray *out[1] = { NULL };
   symmex_call (1, out, c->nargs, c->args, c->fname);
   c->args[1] = t1;
   c->args[2] = y1;
   static const char *expect = "a %dx%d real matrix (Vectorized)";
-  if (out[0] && ! symmex_is_size (out[0], c->n, k))
-    symmex_checked (c, out, (size_t) -1, "FCN", 0, t[0], expect, c->n, k);
-  const double *v = symmex_checked (c, out, (size_t) c->n * k, "FCN", 0,
-                                    t[0], expect, c->n, k);
-  note_nonfinite (c, v, (size_t) c->n * k, "FCN", t[0]);
-  memcpy (dy, v, sizeof (double) * c->n * k);
+  if (out[0] && ! symmex_is_size (out[0], nf, k))
+    symmex_checked (c, out, (size_t) -1, "FCN", 0, t[0], expect, nf, k);
+  const double *v = symmex_checked (c, out, (size_t) nf * k, "FCN", 0,
+                                    t[0], expect, nf, k);
+  note_nonfinite (c, v, (size_t) nf * k, "FCN", t[0]);
+  if (c->second_order)
+    for (int j = 0; j < k; j++)
+      {
+        memcpy (dy + (size_t) j * n, y + (size_t) j * n + nf,
+                sizeof (double) * nf);
+        memcpy (dy + (size_t) j * n + nf, v + (size_t) j * nf,
+                sizeof (double) * nf);
+      }
+  else
+    memcpy (dy, v, sizeof (double) * n * k);
   mxDestroyArray (out[0]);
   return 0;
 }

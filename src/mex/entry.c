@@ -57,8 +57,11 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   void *own = mxCalloc (1, m->own_size);
   m->parse (name, a.opts && ! mxIsEmpty (a.opts) ? a.opts : NULL, own);
 
+  const sym_stepper_type *type = m->stepper ? m->stepper (name, own, &o)
+                                 : *m->type;
   sym_system sys;
   symmex_ctx *c = symmex_problem (name, &a, &o, m->needs_newton (own),
+                                  m->second_order && m->second_order (own),
                                   nlhs, &sys);
   sym_method_opts mo;
   memset (&mo, 0, sizeof mo);
@@ -77,7 +80,7 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
     }
 
   sym_stats st;
-  int status = sym_integrate (*m->type, &sys, &mo, &dopt, a.y0, &st);
+  int status = sym_integrate (type, &sys, &mo, &dopt, a.y0, &st);
   /* the probe of FCN at (t0, y0), and of its Vectorized form */
   st.cnt.nrhs += c->probe_calls;
   st.cnt.nrhs_states += c->probe_states;

@@ -94,9 +94,9 @@ check_vectorized (symmex_ctx *c, const symmex_args *a, const double *f0)
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Vectorized is on, but FCN does "
                        "not evaluate the columns of Y one by one: column %d "
                        "of FCN (t, Y) differs from FCN (t, Y(:,%d)) by %.3g "
-                       "at t = %.15g; make FCN take a 2d-by-k Y, or set "
+                       "at t = %.15g; make FCN take a %d-by-k Y, or set "
                        "Vectorized off", c->solver, col, col, dif,
-                       a->tspan[0]);
+                       a->tspan[0], c->nf);
 }
 
 /* FCN at (t0, y0): its size and values, and (probe_hess) whether it gives
@@ -122,16 +122,25 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
   if (! out[0])
     symmex_call (1, out, c->nargs, c->args, c->fname);
   c->probe_calls = c->probe_states = 1;
-  const double *f0 = symmex_checked (c, &out[0], n, "FCN", 0, a->tspan[0],
-                                     "a vector of %d real elements", n);
-  for (int i = 0; i < n; i++)
-    if (! isfinite (f0[i]))
+  const double *v = symmex_checked (c, &out[0], c->nf, "FCN", 0,
+                                    a->tspan[0], c->second_order
+                                    ? "the acceleration, a vector of %d real "
+                                      "elements (SecondOrder)"
+                                    : "a vector of %d real elements", c->nf);
+  /* f at y0 (SecondOrder: [v0; a]) */
+  double *f0 = mxMalloc (sizeof (double) * n);
+  memcpy (f0, c->second_order ? a->y0 + c->d : v, sizeof (double) * c->nf);
+  if (c->second_order)
+    memcpy (f0 + c->d, v, sizeof (double) * c->d);
+  for (int i = 0; i < c->nf; i++)
+    if (! isfinite (v[i]))
       mexErrMsgIdAndTxt ("symplectic:nonfinite", "%s: FCN returned %s "
                          "(element %d) at t = %.15g, the initial point",
-                         c->solver, SYMMEX_NUM (f0[i], "%g"), i + 1,
+                         c->solver, SYMMEX_NUM (v[i], "%g"), i + 1,
                          a->tspan[0]);
   if (c->o->vectorized)
     check_vectorized (c, a, f0);
+  mxFree (f0);
   if (have2)
     symmex_checked (c, &out[1], symmex_hessian_shape (out[1], n)
                     ? (size_t) n * n : (size_t) -1, "FCN (second output)",
@@ -203,13 +212,15 @@ count_events (symmex_ctx *c, const symmex_args *a, const mxArray *events)
 
 symmex_ctx *
 symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
-                int need_jac, int nlhs, sym_system *sys)
+                int need_jac, int second_order, int nlhs, sym_system *sys)
 {
   const int n = a->n;
   symmex_ctx *c = mxCalloc (1, sizeof (symmex_ctx));
   c->solver = solver;
   c->n = n;
   c->d = n / 2;
+  c->second_order = second_order;
+  c->nf = second_order ? c->d : n;
   c->o = o;
   c->nextra = a->nextra;
   c->extra = a->extra;
@@ -217,10 +228,10 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
   c->args = mxCalloc (c->nargs, sizeof (mxArray *));
   c->args[0] = (mxArray *) a->fcn;
   c->args[1] = mxCreateDoubleScalar (a->tspan[0]);
-  c->args[2] = col (n);
+  c->args[2] = col (c->nf);
   for (int i = 0; i < c->nextra; i++)
     c->args[3 + i] = (mxArray *) c->extra[i];
-  memcpy (mxGetPr (c->args[2]), a->y0, sizeof (double) * n);
+  memcpy (mxGetPr (c->args[2]), a->y0, sizeof (double) * c->nf);
   symmex_direct_name (a->fcn, c->fname, sizeof c->fname);
   if (c->nextra > 0)
     check_nargin (c, a->fcn);

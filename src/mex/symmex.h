@@ -15,6 +15,8 @@
 #include "../core/sym.h"
 
 /* ------------------------------------------------------------ methods */
+struct symmex_opts_s;
+
 /* A method as the MEX layer sees it: one descriptor each (methods/). */
 typedef struct {
   const char *name;                     /* the solver: messages, sol.solver */
@@ -36,6 +38,13 @@ typedef struct {
   /* what the steps found changing when Separable is on but f is not
      separable (NULL: the method has no Separable) */
   const char *sep_broken;
+  /* The core's stepper for own, its options checked against the common
+     ones o (errors name the solver); NULL: *type */
+  const sym_stepper_type *(*stepper) (const char *solver, const void *own,
+                                      const struct symmex_opts_s *o);
+  /* whether FCN is the acceleration a(t, q) of y = [q; v] (f = [v; a]);
+     NULL: never */
+  int (*second_order) (const void *own);
 } symmex_method;
 
 extern const symmex_method symmex_method_se;
@@ -70,7 +79,7 @@ enum { JAC_NONE = 0, JAC_FD, JAC_MATRIX, JAC_FCN, JAC_HESSFCN, JAC_FCN2 };
 
 /* The options common to the solvers (odeset's fields and the package's
    common ones) */
-typedef struct {
+typedef struct symmex_opts_s {
   double rtol;
   double *atol;
   int atol_len;
@@ -120,6 +129,9 @@ int symmex_word (const char *solver, const mxArray *v, const char *name,
 typedef struct {
   const char *solver;
   int d, n;
+  /* SecondOrder: FCN takes q and returns a (nf = d values), f = [v; a];
+     else nf = n */
+  int second_order, nf;
   /* feval arguments: {fcn, t, y, extras...}; t and y are reused */
   mxArray **args;
   int nargs;
@@ -158,12 +170,12 @@ typedef struct {
 } symmex_ctx;
 
 /* The context of a run: FCN probed at (t0, y0) (its size and values,
-   and, when need_jac, whether it gives the Hessian as a second output),
+   FCN (t, q) returning a when second_order, and, when need_jac, whether it gives the Hessian as a second output),
    the source of Newton's matrix, the number of events, OutputFcn's
    "init" (odeplot when nargout is 0); the core's system into sys */
 symmex_ctx *symmex_problem (const char *solver, const symmex_args *a,
-                            symmex_opts *o, int need_jac, int nlhs,
-                            sym_system *sys);
+                            symmex_opts *o, int need_jac, int second_order,
+                            int nlhs, sym_system *sys);
 
 /* callbacks.c: the core's callbacks (user: the symmex_ctx) */
 int symmex_cb_rhs (double t, const double *y, double *dy, void *user);

@@ -11,5 +11,6 @@ extern const char *const symmex_onestep_options[];
 void symmex_onestep_parse (const char *solver, const mxArray *opts,
                            void *own);
 int symmex_onestep_needs_newton (const void *own);
+int symmex_onestep_second_order (const void *own);
 
 #endif

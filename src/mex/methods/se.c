@@ -7,5 +7,5 @@
 const symmex_method symmex_method_se = {
   "odeSE", &sym_step_se, sizeof (sym_onestep_opts), symmex_onestep_parse,
   symmex_onestep_options, symmex_onestep_needs_newton, NULL, NULL,
-  "dH/dq changed with p at the same q"
+  "dH/dq changed with p at the same q", NULL, symmex_onestep_second_order
 };

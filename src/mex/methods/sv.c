@@ -1,11 +1,88 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* sv.c -- odeSV: Stoermer-Verlet (core: methods/sv.c). */
+/* sv.c -- odeSV: Stoermer-Verlet (core: methods/sv.c) and the
+   compositions and splittings of the table sym_splittings (core:
+   methods/splitting.c), chosen by Method.  Own options: those of odeSE,
+   Method, CompensatedSummation; sol gains the method and its order. */
 #include "onestep.h"
 
+#include <stdio.h>
+#include <string.h>
+
+static const char *const sv_options[] = {
+  "Separable", "SecondOrder", "Method", "CompensatedSummation", NULL
+};
+
+static void
+sv_parse (const char *solver, const mxArray *opts, void *own)
+{
+  sym_onestep_opts *o = own;
+  symmex_onestep_parse (solver, opts, own);
+  const mxArray *v = symmex_field (solver, opts, "Method");
+  o->method = 0;
+  if (v)
+    {
+      char name[32] = "";
+      if (! mxIsChar (v) || mxGetNumberOfElements (v) >= sizeof name
+          || mxGetString (v, name, sizeof name)
+          || (o->method = sym_splitting_find (name)) < 0)
+        {
+          char list[512] = "";
+          for (int k = 0; sym_splittings[k].name; k++)
+            snprintf (list + strlen (list), sizeof list - strlen (list),
+                      "%s\"%s\"", k ? ", " : "", sym_splittings[k].name);
+          mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Method must be one of %s",
+                             solver, list);
+        }
+    }
+  const mxArray *c = symmex_field (solver, opts, "CompensatedSummation");
+  o->compensated = c ? symmex_on_off (solver, c, "CompensatedSummation")
+                   : 0;
+}
+
+/* Stoermer-Verlet's own stepper, with its adaptive steps, unless another
+   method or compensated sums are asked for: those take fixed steps of
+   the splitting stepper */
+static const sym_stepper_type *
+sv_stepper (const char *solver, const void *own, const symmex_opts *o)
+{
+  const sym_onestep_opts *s = own;
+  const sym_splitting *m = &sym_splittings[s->method];
+  if (s->method == 0 && ! s->compensated)
+    return sym_step_sv;
+  if (! symmex_fixed (o))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s takes fixed steps: give "
+                       "TimeStepSize or TimeStepNumber", solver,
+                       s->method ? "Method" : "CompensatedSummation");
+  if (m->kind == SYM_SPLITTING && ! s->separable)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Method \"%s\" is a splitting of "
+                       "H = T(p) + V(q): set Separable (or SecondOrder) on, "
+                       "or choose a composition of Verlet steps", solver,
+                       m->name);
+  if (s->compensated && ! s->separable)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: CompensatedSummation sums the "
+                       "updates of explicit steps: set Separable (or "
+                       "SecondOrder) on", solver);
+  return sym_step_splitting;
+}
+
+static void
+sv_sol_fields (mxArray *sol, const void *own, const sym_stats *st)
+{
+  const sym_onestep_opts *s = own;
+  (void) st;
+  mxAddField (sol, "method");
+  mxAddField (sol, "order");
+  mxSetField (sol, 0, "method",
+              mxCreateString (sym_splittings[s->method].name));
+  mxSetField (sol, 0, "order",
+              mxCreateDoubleScalar (sym_splittings[s->method].order));
+}
+
 const symmex_method symmex_method_sv = {
-  "odeSV", &sym_step_sv, sizeof (sym_onestep_opts), symmex_onestep_parse,
-  symmex_onestep_options, symmex_onestep_needs_newton, NULL, NULL,
-  "dH/dp changed with q (or t) at the same p"
+  "odeSV", &sym_step_sv, sizeof (sym_onestep_opts), sv_parse,
+  sv_options, symmex_onestep_needs_newton, sv_sol_fields, NULL,
+  "dH/dp changed with q (or t) at the same p", sv_stepper,
+  symmex_onestep_second_order
 };
