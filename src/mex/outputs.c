@@ -187,6 +187,8 @@ symmex_energy (symmex_ctx *c)
   mxArray **args = mxCalloc (c->nargs, sizeof (mxArray *));
   memcpy (args, c->args, sizeof (mxArray *) * c->nargs);
   args[0] = (mxArray *) c->o->hamiltonian;
+  /* its own y: FCN's holds q alone with SecondOrder */
+  args[2] = mxCreateDoubleMatrix (n, 1, mxREAL);
   char name[64];
   symmex_direct_name (args[0], name, sizeof name);
   c->hbuf = mxMalloc (sizeof (double) * (c->nrows + 1));
@@ -205,6 +207,7 @@ symmex_energy (symmex_ctx *c)
       if (rel > c->max_dh || isnan (rel))
         c->max_dh = rel;
     }
+  mxDestroyArray (args[2]);
 }
 
 static mxArray *
