@@ -74,6 +74,11 @@
 ## @qcode{"on"} for H = T(p) + V(q), with no forcing that depends on p.
 ## An @var{fcn} that shows otherwise gets a warning.  Default
 ## @qcode{"off"}.
+## @item SecondOrder
+## @qcode{"on"}: @var{fcn} returns the acceleration, @code{a = fcn (t,
+## q)} (-dV/dq for H = |p|^2/2 + V(q)), a column of length d, and y =
+## [q; v] with v = dq/dt; the steps are the explicit ones, one call of
+## @var{fcn} each.  Default @qcode{"off"}.
 ## @item Jacobian, HamiltonianHessFcn
 ## Sources of Newton's matrix (above); @code{sol.stats.jacobian_source}
 ## says which one served.

@@ -51,6 +51,41 @@
 ## step sizes lock to their phase and can pump their energy by orders of
 ## magnitude.  For long runs, and for such systems, use a fixed step.
 ##
+## @strong{Higher order.}  @code{Method} replaces the Verlet step by a
+## composition of Verlet steps (any H; implicit stages unless
+## @code{Separable} is on) or by a splitting method (separable H only).
+## All are symplectic, all but two symmetric (time-reversible); they take
+## fixed steps (@code{TimeStepSize} or @code{TimeStepNumber}).
+##
+## @multitable @columnfractions 0.2 0.1 0.1 0.6
+## @headitem Method @tab order @tab stages @tab kind
+## @item @qcode{"verlet"} @tab 2 @tab 1 @tab the default
+## @item @qcode{"yoshida4"} @tab 4 @tab 3 @tab composition (triple jump)
+## @item @qcode{"suzuki4"} @tab 4 @tab 5 @tab composition
+## @item @qcode{"kahanli6"} @tab 6 @tab 9 @tab composition
+## @item @qcode{"kahanli8"} @tab 8 @tab 17 @tab composition
+## @item @qcode{"mclachlan8"} @tab 8 @tab 15 @tab composition
+## @item @qcode{"sofspa10"} @tab 10 @tab 35 @tab composition
+## @item @qcode{"ruth3"} @tab 3 @tab 3 @tab splitting, not symmetric
+## @item @qcode{"candyrozmus4"} @tab 4 @tab 3 @tab splitting
+## @item @qcode{"mclachlan4"} @tab 4 @tab 4 @tab splitting, not symmetric (*)
+## @item @qcode{"blanesmoan6"} @tab 6 @tab 11 @tab splitting (*)
+## @end multitable
+##
+## @noindent
+## (*) Nystrom methods: their order holds for a kinetic energy quadratic
+## in p, T = |p|^2/2 (or p'*inv(M)*p/2), as with @code{SecondOrder}; for
+## other T it is 3 and 4.  Stages are force evaluations f_p per step; in
+## the first-order form each drift between them also needs f_q, about
+## two calls of @var{fcn} per stage.  With
+## @code{SecondOrder} on, @var{fcn} returns the acceleration, @code{a =
+## fcn (t, q)}, y = [q; v] with v = dq/dt, and a stage makes one call.
+## For H = |p|^2/2 + V(q), a = -dV/dq; for masses m_i, a_i = F_i / m_i:
+## the steps are then those of H = p'*inv(M)*p/2 + V(q) with p = M v.  @code{CompensatedSummation} sums the updates
+## of q and p with compensation: for runs of a million steps and more the
+## round-off of the energy then grows like a random walk instead of
+## linearly.
+##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
 ## @code{odeSE}: @var{sol} has the fields of @code{ode45}, and with no
 ## output the solution is plotted with @code{odeplot}.
@@ -66,6 +101,10 @@
 ## @item Separable (alias Explicit)
 ## @qcode{"on"}: explicit leapfrog (above); a warning when @var{fcn}
 ## shows that dH/dp depends on q (or t).  Default @qcode{"off"}.
+## @item Method, SecondOrder, CompensatedSummation
+## Above.  Defaults @qcode{"verlet"}, @qcode{"off"}, @qcode{"off"}; names
+## of methods are matched without regard to case.  @code{sol.method} and
+## @code{sol.order} say which method ran.
 ## @item Jacobian, HamiltonianHessFcn
 ## Sources of Newton's matrix (above); @code{sol.stats.jacobian_source}
 ## says which one served.

@@ -221,12 +221,15 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
   else
     memset (c, 0, (size_t) n * sizeof (double));
   /* f_p at q_k: the last step's (FSAL), else with f_q at p_k from f(t_k,
-     y_k), which the record keeps */
+     y_k), which the record keeps; not evaluated for a method that
+     begins with a drift when f_q is p */
   if (cont && FPE_OK (cu) != 0.0)
     {
       memcpy (fp, FPE (cu), (size_t) d * sizeof (double));
       fp_ok = 1;
     }
+  else if (so && s->b[0] == 0.0)
+    fp_ok = 0;
   else
     {
       if ((st = sym_recs_f0 (&s->o.r, ev)))

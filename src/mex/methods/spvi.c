@@ -46,6 +46,13 @@ spvi_parse (const char *solver, const mxArray *opts, void *own)
 {
   static const char *const matrix[] = { "auto", "kept", "new", NULL };
   sym_spvi_opts *o = own;
+  /* an option of odeSE and odeSV, but one that changes what FCN means:
+     refused rather than ignored */
+  const mxArray *so = symmex_field (solver, opts, "SecondOrder");
+  if (so && symmex_on_off (solver, so, "SecondOrder"))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: SecondOrder is for odeSE and "
+                       "odeSV; give %s FCN as Hamilton's equations, "
+                       "[v; a(t, q)] for y = [q; v]", solver, solver);
   spvi_pair (solver, opts, o);
   const mxArray *v = symmex_field (solver, opts, "NewtonMatrix");
   const int k = v ? symmex_word (solver, v, "NewtonMatrix", matrix) : 0;
