@@ -338,6 +338,11 @@ check_bad_input (void)
   o = sp_opts (-1, 1, 0, 0, &own);
   S = sym_step_splitting->alloc (2, &o, &st);
   CHECK (! S && st == SYM_EBADINPUT, "method -1: %s", sym_status_name (st));
+  /* no options: Verlet's implicit stages */
+  S = sym_step_splitting->alloc (2, NULL, &st);
+  CHECK (S != NULL && st == SYM_SUCCESS, "no options: %s",
+         sym_status_name (st));
+  sym_step_splitting->free (S);
   o = sp_opts (1, 1, 0, 0, &own);
   S = sym_step_splitting->alloc (2, &o, &st);
   CHECK (S != NULL, "alloc: %s", sym_status_name (st));

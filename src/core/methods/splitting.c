@@ -72,7 +72,11 @@ sp_inner (sp_state *s, const sym_method_opts *opts)
 {
   const int k = s->m->stages;
   const double *g = s->m->coef;
-  sym_method_opts io = *opts;
+  sym_method_opts io;
+  if (opts)
+    io = *opts;
+  else
+    memset (&io, 0, sizeof io);
   static const sym_onestep_opts implicit = { 0, 0, 0, 0 };
   io.own = &implicit;
   io.want_dense = 0;
