@@ -81,10 +81,10 @@
 ## @code{SecondOrder} on, @var{fcn} returns the acceleration, @code{a =
 ## fcn (t, q)}, y = [q; v] with v = dq/dt, and a stage makes one call.
 ## For H = |p|^2/2 + V(q), a = -dV/dq; for masses m_i, a_i = F_i / m_i:
-## the steps are then those of H = p'*inv(M)*p/2 + V(q) with p = M v.  @code{CompensatedSummation} sums the updates
-## of q and p with compensation: for runs of a million steps and more the
-## round-off of the energy then grows like a random walk instead of
-## linearly.
+## the steps are then those of H = p'*inv(M)*p/2 + V(q) with p = M v.
+## @code{CompensatedSummation} sums the updates of q and p with
+## compensation, which keeps the round-off of the energy near that of a
+## single step over runs of a million steps and more.
 ##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
 ## @code{odeSE}: @var{sol} has the fields of @code{ode45}, and with no

@@ -60,8 +60,8 @@
 ## @code{help odeSV}).  Default @qcode{"verlet"}.
 ## @item CompensatedSummation
 ## @code{odeSV}: @qcode{"on"} sums the updates of explicit fixed steps
-## with compensation, which keeps the round-off of very long runs at
-## random-walk growth.  Default @qcode{"off"}.
+## with compensation, which keeps the round-off of the energy of very
+## long runs near that of a single step.  Default @qcode{"off"}.
 ## @item NewtonTol
 ## Stopping tolerance of Newton's method, relative to the size of q for
 ## the unknowns of q and to the size of p for those of p (in the units of
