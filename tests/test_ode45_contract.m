@@ -81,6 +81,8 @@
 %!   assert (size (sol.ye), [1, 2]);
 %!   if (i == 3)
 %!     assert ([sol.order, sol.Q_DoFs, sol.Nodes], [6, 4, 3]);
+%!   elseif (i == 2)
+%!     assert ({sol.method, sol.order}, {"verlet", 2});
 %!   else
 %!     assert (! isfield (sol, "order"));
 %!   endif
