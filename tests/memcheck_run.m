@@ -11,8 +11,9 @@
 ## source, Vectorized, Separable, backwards, Stats; bad inputs (errors
 ## raised in the MEX layer), errors thrown by the user's functions in the
 ## middle of a run, NaN from FCN, Newton and MaxSteps failures (warnings
-## with partial results).  Returns 0 if all results were as expected, 1
-## otherwise (valgrind's own findings are judged by check_memory.sh).
+## with partial results), SecondOrder and odeSV's methods.  Returns 0 if
+## all results were as expected, 1 otherwise (valgrind's own findings are
+## judged by check_memory.sh).
 ## Not a test_*.m file: the test runner does not run it.
 ## @end deftypefn
 
@@ -151,6 +152,30 @@ function status = memcheck_run ()
     nbad += check (all (isfinite (y(:))), "odeSPVI", "NewtonMatrix new");
   endfor
   nbad += expect_error (@odeSPVI, "Octave:invalid-input-arg", osc, [0 1], [1 0], struct ("NewtonMatrix", "x"));
+  ## SecondOrder (FCN gets q alone; Hamiltonian, Events and OutputFcn
+  ## [q; v]), Vectorized too; odeSV's methods, explicit and implicit, with
+  ## compensated sums, events and dense output
+  acc = @(t, q) -q ./ sum (q.^2, 1).^1.5;
+  Hk = @(t, y) sum (y(3:4).^2) / 2 - 1 / norm (y(1:2));
+  for s = {@odeSE, @odeSV}
+    sol = s{1} (acc, [0 1], y0k, struct ("SecondOrder", "on", "TimeStepSize", 0.01, ...
+                "Hamiltonian", Hk, "Events", @(t, y) deal (y(2) - 0.5, 0, 0), ...
+                "OutputFcn", @(t, y, flag) false, "Vectorized", "on", "Dense", "on"));
+    nbad += check (sol.stats.max_dH < 0.1 && numel (sol.xe) == 1, func2str (s{1}), "SecondOrder");
+    [t, y] = s{1} (acc, [0 1], y0k, struct ("SecondOrder", "on"));
+    nbad += check (t(end) == 1, func2str (s{1}), "SecondOrder adaptive");
+    nbad += expect_error (s{1}, "Octave:invalid-input-arg", @(t, q) [q; 1], [0 1], y0k, struct ("SecondOrder", "on"));
+  endfor
+  for m = {"yoshida4", "blanesmoan6"}
+    [t, y, te] = odeSV (kep, [0 1], y0k, struct ("Method", m{1}, "TimeStepSize", 0.05, ...
+                        "Separable", "on", "CompensatedSummation", "on", "Refine", 3, ...
+                        "Events", @(t, y) deal (y(2) - 0.5, 0, 0)));
+    nbad += check (numel (t) == 61 && numel (te) == 1, m{1}, "explicit");
+  endfor
+  [t, y] = odeSV (kep, [0 1], y0k, struct ("Method", "suzuki4", "TimeStepSize", 0.05));
+  nbad += check (numel (t) == 21 && all (isfinite (y(:))), "suzuki4", "implicit");
+  nbad += expect_error (@odeSV, "Octave:invalid-input-arg", kep, [0 1], y0k, struct ("Method", "ruth3", "TimeStepSize", 0.05));
+  nbad += expect_error (@odeSV, "Octave:invalid-input-arg", kep, [0 1], y0k, struct ("Method", "yoshida4"));
 
   printf ("memcheck_run: %d unexpected results\n", nbad);
   status = double (nbad > 0);
