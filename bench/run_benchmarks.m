@@ -80,23 +80,6 @@ function s = timeit (f, minsec)
   endwhile
 endfunction
 
-function [t, tab] = timeit_turns (fs, minsec)
-  ## best time of each function in fs, run in turns (a, b, ..., a, b, ...)
-  ## for at least minsec seconds in all: the load of the machine drifts
-  ## over seconds, and a ratio of two times is only fair when both saw it.
-  ## tab: every time, one row per round
-  n = numel (fs);
-  tab = zeros (0, n);  tot = 0;
-  while (tot < minsec || rows (tab) < 2)
-    tab(end+1, :) = 0;
-    for i = 1:n
-      tic;  r = fs{i} ();  el = toc;   # one output: no plot
-      tab(end, i) = el;  tot += el;
-    endfor
-  endwhile
-  t = min (tab, [], 1);
-endfunction
-
 here = fileparts (mfilename ("fullpath"));
 addpath (here);
 ## rebuilt on every run: a stale probe would measure other calls

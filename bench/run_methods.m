@@ -55,21 +55,6 @@ function H = kep_H (Y)
   H = sum (Y(:, 3:4).^2, 2) / 2 - 1 ./ sqrt (sum (Y(:, 1:2).^2, 2));
 endfunction
 
-function [t, tab] = timeit_turns (fs, minsec)
-  ## best time of each function in fs, run in turns (a, b, ..., a, b, ...)
-  ## for at least minsec seconds in all and at least 3 rounds
-  n = numel (fs);
-  tab = zeros (0, n);  tot = 0;
-  while (tot < minsec || rows (tab) < 3)
-    tab(end+1, :) = 0;
-    for i = 1:n
-      tic;  r = fs{i} ();  el = toc;   # one output: no plot
-      tab(end, i) = el;  tot += el;
-    endfor
-  endwhile
-  t = min (tab, [], 1);
-endfunction
-
 function r = one_run (solver, fcn, tf, y0, opts, efun, Hfun, label, form, N, h)
   ## one fixed-step (or adaptive) run: time, calls, error, energy
   r.label = label;  r.form = form;  r.N = N;  r.h = h;
@@ -383,7 +368,7 @@ printf ("  (a) best explicit (Separable): %s, %.3g calls at 1e-8; verlet %.3g (%
 ob1 = symplecticset ("TimeStepNumber", 10 * 1000, "Separable", "on");
 ob2 = symplecticset ("TimeStepNumber", 10 * 1000, "SecondOrder", "on");
 [tb, tbt] = timeit_turns ({@() odeSV(@kep, [0 10*T], y0, ob1), ...
-                           @() odeSV(@kacc, [0 10*T], y0, ob2)}, 4);
+                           @() odeSV(@kacc, [0 10*T], y0, ob2)}, 4, 3);
 rb = tb(1) / tb(2);
 rbr = tbt(:, 1) ./ tbt(:, 2);
 printf ("  (b) Kepler Verlet 1e4 steps: first-order %.1f ms, SecondOrder %.1f ms: %.2fx\n", ...
@@ -401,7 +386,7 @@ agree_c = [norm(ym1(end, :).' - sc1.y(:, end)), norm(ym2(end, :).' - sc2.y(:, en
 [tc, tct] = timeit_turns ({@() yoshida4_mfile(@kep, nc_*T, y0, hc), ...
                            @() odeSV(@kep, [0 nc_*T], y0, oc1), ...
                            @() yoshida4_mfile(@kacc, nc_*T, y0, hc, "secondorder"), ...
-                           @() odeSV(@kacc, [0 nc_*T], y0, oc2)}, 8);
+                           @() odeSV(@kacc, [0 nc_*T], y0, oc2)}, 8, 3);
 rc1 = tc(1) / tc(2);  rc2 = tc(3) / tc(4);
 printf ("  (c) yoshida4 5000 steps: Separable m-file %.1f ms / compiled %.1f ms = %.2fx; SecondOrder %.1f / %.1f ms = %.2fx\n", ...
         1e3 * tc(1), 1e3 * tc(2), rc1, 1e3 * tc(3), 1e3 * tc(4), rc2);
@@ -515,7 +500,7 @@ printf ("  best: %s, %.3g calls at 1e-6 AU; verlet %.3g (%s); ode45 %.3g (%s)\n"
 ob1 = symplecticset ("TimeStepNumber", 1e4, "Separable", "on");
 ob2 = symplecticset ("TimeStepNumber", 1e4, "SecondOrder", "on");
 tbs = timeit_turns ({@() odeSV(S.fcn, [0 tfs], yp0, ob1), ...
-                     @() odeSV(S.acc, [0 tfs], ys0, ob2)}, 4);
+                     @() odeSV(S.acc, [0 tfs], ys0, ob2)}, 4, 3);
 rbs = tbs(1) / tbs(2);
 printf ("  (b) solar Verlet 1e4 steps: first-order %.0f ms, SecondOrder %.0f ms: %.2fx\n", ...
         1e3 * tbs(1), 1e3 * tbs(2), rbs);

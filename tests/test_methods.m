@@ -178,6 +178,23 @@
 %!  y1 = y(end, :).';
 %!endfunction
 
+%!function check_orders (names, Ns, f, T, y0, yT, opts, floor)
+%!  ## for each method: the errors at T of the runs of N(i) steps (Ns.(name))
+%!  ## against yT, their fitted slope within 0.3 of the nominal order, and
+%!  ## (floor > 0) every error above floor, clear of round-off
+%!  for k = 1:numel (names)
+%!    m = mcoefs (names{k});  N = Ns.(names{k});  err = zeros (size (N));
+%!    for i = 1:numel (N)
+%!      o = symplecticset (opts, "TimeStepNumber", N(i), "Method", names{k});
+%!      err(i) = norm (last_row (@odeSV, f, [0 T], y0, o) - yT, Inf);
+%!    endfor
+%!    s = fitted_slope (N, err);
+%!    assert (abs (s - m.order) <= 0.3, "%s: slope %.2f, errors %s",
+%!            names{k}, s, mat2str (err, 3));
+%!    assert (min (err) > floor);
+%!  endfor
+%!endfunction
+
 %!shared names, comps, e, y0k
 %! names = {"verlet", "yoshida4", "suzuki4", "kahanli6", "kahanli8", ...
 %!          "mclachlan8", "sofspa10", "ruth3", "candyrozmus4", ...
@@ -225,18 +242,7 @@
 %!              "sofspa10", [4 6 8 10], "ruth3", [256 362 512 724], ...
 %!              "candyrozmus4", [32 64 128], "mclachlan4", [16 32 64], ...
 %!              "blanesmoan6", [8 16 32]);
-%! for k = 1:numel (names)
-%!   m = mcoefs (names{k});  N = Ns.(names{k});  err = zeros (size (N));
-%!   for i = 1:numel (N)
-%!     o = symplecticset ("TimeStepNumber", N(i), "Separable", "on", ...
-%!                        "Method", names{k});
-%!     err(i) = norm (last_row (@odeSV, @kep, [0 T], y0k, o) - yT, Inf);
-%!   endfor
-%!   s = fitted_slope (N, err);
-%!   assert (abs (s - m.order) <= 0.3, "%s: slope %.2f, errors %s",
-%!           names{k}, s, mat2str (err, 3));
-%!   assert (min (err) > 1e-13);
-%! endfor
+%! check_orders (names, Ns, @kep, T, y0k, yT, symplecticset ("Separable", "on"), 1e-13);
 
 %!test
 %! ## the same on the pendulum H = p^2/2 - cos q from (2, 0) to t = 1.5,
@@ -250,18 +256,7 @@
 %!              "sofspa10", [3 4 5], "ruth3", [24 48 96], ...
 %!              "candyrozmus4", [12 24 48], "mclachlan4", [8 16 32], ...
 %!              "blanesmoan6", [4 6 8 12]);
-%! for k = 1:numel (names)
-%!   m = mcoefs (names{k});  N = Ns.(names{k});  err = zeros (size (N));
-%!   for i = 1:numel (N)
-%!     o = symplecticset ("TimeStepNumber", N(i), "Separable", "on", ...
-%!                        "Method", names{k});
-%!     err(i) = norm (last_row (@odeSV, @pend, [0 T], [2; 0], o) - yT, Inf);
-%!   endfor
-%!   s = fitted_slope (N, err);
-%!   assert (abs (s - m.order) <= 0.3, "%s: slope %.2f, errors %s",
-%!           names{k}, s, mat2str (err, 3));
-%!   assert (min (err) > 1e-13);
-%! endfor
+%! check_orders (names, Ns, @pend, T, [2; 0], yT, symplecticset ("Separable", "on"), 1e-13);
 
 %!test
 %! ## the compositions on the implicit path (Separable off: Stormer-Verlet
@@ -273,16 +268,7 @@
 %!              "suzuki4", [16 32 64], "kahanli6", [16 32 64], ...
 %!              "kahanli8", [8 11 16 23], "mclachlan8", [11 16 23 32], ...
 %!              "sofspa10", [4 6 8 10]);
-%! for k = 1:numel (comps)
-%!   m = mcoefs (comps{k});  N = Ns.(comps{k});  err = zeros (size (N));
-%!   for i = 1:numel (N)
-%!     o = symplecticset ("TimeStepNumber", N(i), "Method", comps{k});
-%!     err(i) = norm (last_row (@odeSV, @kep, [0 T], y0k, o) - yT, Inf);
-%!   endfor
-%!   s = fitted_slope (N, err);
-%!   assert (abs (s - m.order) <= 0.3, "%s: slope %.2f, errors %s",
-%!           comps{k}, s, mat2str (err, 3));
-%! endfor
+%! check_orders (comps, Ns, @kep, T, y0k, yT, symplecticset (), 0);
 
 %!test
 %! ## and on a non-separable H (H = |p|^2/2 (1 + |q|^2/4) + |q|^4/8), where
@@ -293,17 +279,7 @@
 %! [~, y] = ode45 (@nonsep, [0 T], y0, odeset ("RelTol", 1e-13, "AbsTol", 1e-13));
 %! yT = y(end, :).';
 %! Ns = struct ("yoshida4", [10 20 40], "kahanli6", [5 10 20]);
-%! for nm = fieldnames (Ns).'
-%!   m = mcoefs (nm{1});  N = Ns.(nm{1});  err = zeros (size (N));
-%!   for i = 1:numel (N)
-%!     o = symplecticset ("TimeStepNumber", N(i), "Method", nm{1});
-%!     err(i) = norm (last_row (@odeSV, @nonsep, [0 T], y0, o) - yT, Inf);
-%!   endfor
-%!   s = fitted_slope (N, err);
-%!   assert (abs (s - m.order) <= 0.3, "%s: slope %.2f, errors %s",
-%!           nm{1}, s, mat2str (err, 3));
-%!   assert (min (err) > 1e-10);
-%! endfor
+%! check_orders (fieldnames (Ns).', Ns, @nonsep, T, y0, yT, symplecticset (), 1e-10);
 
 %!test
 %! ## mclachlan4 and blanesmoan6 are Runge-Kutta-Nystrom methods: their
