@@ -134,8 +134,9 @@ kepler_error (int method, int separable, int second_order, long N,
 
 /* The least-squares slope of -log (error) against log (N) over the
    errors between 1e-11 and 1e-5 (1e-7 for orders above 4, whose coarse
-   steps are not yet asymptotic), at least 4 of them, of N growing
-   geometrically by 11/10: the order of an error function err (k, N) */
+   steps are not yet asymptotic), at least 4 and at most 12 of them, of N
+   growing geometrically by 5/4: the order of an error function err
+   (k, N) */
 static double
 fit_order (double (*err) (int, int, long), int k, int sep, double *lo,
            double *hi)
@@ -144,7 +145,7 @@ fit_order (double (*err) (int, int, long), int k, int sep, double *lo,
   int m = 0;
   *lo = INFINITY;
   *hi = 0;
-  for (long N = 10; N < 40000; N += N / 10)
+  for (long N = 8; N < 40000 && m < 12; N += N / 4)
     {
       double e = err (k, sep, N);
       if (e < 1e-11)
