@@ -43,21 +43,32 @@ fd_sizes (const sym_eval *ev, const double *y, double *size)
     size[i] = fmax (size[i], low[i >= d]);
 }
 
+/* The colour of column j: its own column without a pattern */
+static int
+fd_color (const sym_eval *ev, int j)
+{
+  return ev->jp_ncolors > 0 ? ev->jp_color[j] : j;
+}
+
 /* Forward differences at k states (columns of y, times t, f0 their f):
-   df holds k n-by-n Jacobians.  The step of column c balances truncation
-   (~ delta) against round-off (~ eps / delta).  With a batch callback all
-   k n perturbed states go in one call, else one rhs call each; the
-   results are the same.  With fout instead of f0, the k states' own f are
-   evaluated too, into fout: with a batch callback in the same call as the
-   perturbed states when all fit in one.  Counted in nfd (and nrhs). */
+   df holds k n-by-n Jacobians.  The step of column j balances truncation
+   (~ delta) against round-off (~ eps / delta).  Without a pattern each
+   column is stepped in a state of its own; with one (sym_system) all the
+   columns of a colour at once, their rows read from that state's f and
+   the rest of Df zero.  With a batch callback all the stepped states go
+   in one call, else one rhs call each; the results are the same.  With
+   fout instead of f0, the k states' own f are evaluated too, into fout:
+   with a batch callback in the same call as the stepped states when all
+   fit in one.  Counted in nfd (and nrhs). */
 static int
 jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
              const double *f0, double *fout, double *df)
 {
   const int n = 2 * ev->dim;
   const int batch = ev->rhs_batch != NULL;
-  const size_t cols = (size_t) k * n;
-  /* columns evaluated per call: all of them with a batch callback, up to
+  const int ng = ev->jp_ncolors > 0 ? ev->jp_ncolors : n;
+  const size_t cols = (size_t) k * ng;    /* the stepped states */
+  /* states evaluated per call: all of them with a batch callback, up to
      SYM_FD_BATCH_DOUBLES values of y in one call (a chain of d = 300 at 3
      nodes has 1800 columns of 600) */
   size_t ncw = batch ? cols : 1;
@@ -76,19 +87,23 @@ jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
     }
   if (fout)
     f0 = fout;
-  double *w = sym_malloc ((2 * (ncw + nb) * n + 3 * cols + nb + n)
+  const size_t kn = (size_t) k * n;
+  double *w = sym_malloc ((2 * (ncw + nb) * n + 2 * kn + cols + nb + n)
                           * sizeof (double));
   if (! w)
     return SYM_ENOMEM;
   double *yp = w, *fp = w + (ncw + nb) * n, *del = w + 2 * (ncw + nb) * n;
-  double *tp = del + cols, *yv = tp + cols + nb;   /* yv: perturbed values */
+  double *yv = del + kn;                /* kn: the stepped values */
+  double *tp = yv + kn;                 /* cols + nb: the states' times */
+  double *size = tp + cols + nb;        /* n: one state's sizes */
   const double sq = sqrt (DBL_EPSILON);
   for (size_t j = 0; j < nb; j++)
     {
       memcpy (yp + j * n, y + j * n, (size_t) n * sizeof (double));
       tp[j] = t[j];
     }
-  double *size = yv + cols;   /* n: the sizes of one state's components */
+  for (size_t c = 0; c < cols; c++)
+    tp[nb + c] = t[c / ng];
   int st = SYM_SUCCESS;
   /* forward steps; if f is NaN or Inf at a stepped state (a state within
      a step of the edge of f's domain), all of them once more backwards */
@@ -96,17 +111,16 @@ jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
        pass++)
     {
       st = SYM_SUCCESS;
-      for (size_t c = 0; c < cols; c++)
+      for (int s = 0; s < k; s++)
         {
-          const double *yj = y + (c / n) * n;
-          int i = (int) (c % n);
-          if (i == 0)
-            fd_sizes (ev, yj, size);
-          double d = (pass ? -sq : sq) * size[i];
-          volatile double yi = yj[i] + d;   /* exact representable step */
-          yv[c] = yi;
-          del[c] = yi - yj[i];
-          tp[nb + c] = t[c / n];
+          const double *ys = y + (size_t) s * n;
+          fd_sizes (ev, ys, size);
+          for (int i = 0; i < n; i++)
+            {
+              volatile double yi = ys[i] + (pass ? -sq : sq) * size[i];
+              yv[(size_t) s * n + i] = yi;   /* an exact representable step */
+              del[(size_t) s * n + i] = yi - ys[i];
+            }
         }
       for (size_t c0 = 0; c0 < cols && ! st; c0 += ncw)
         {
@@ -115,9 +129,13 @@ jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
           double *ypc = yp + lead * n, *fpc = fp + lead * n;
           for (size_t c = c0; c < c1; c++)
             {
+              const size_t s = c / ng;
+              const int g = (int) (c % ng);
               double *col = ypc + (c - c0) * n;
-              memcpy (col, y + (c / n) * n, (size_t) n * sizeof (double));
-              col[c % n] = yv[c];
+              memcpy (col, y + s * n, (size_t) n * sizeof (double));
+              for (int j = 0; j < n; j++)
+                if (fd_color (ev, j) == g)
+                  col[j] = yv[s * n + j];
             }
           st = batch ? sym_rhs_many (ev, (int) (c1 - c0 + lead),
                                      tp + nb + c0 - lead, yp, fp)
@@ -126,16 +144,95 @@ jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
             memcpy (fout, fp, lead * n * sizeof (double));
           for (size_t c = c0; c < c1 && ! st; c++)
             {
-              const double *fc = fpc + (c - c0) * n, *f0j = f0 + (c / n) * n;
-              double *dfc = df + (c / n) * n * n + (c % n) * n;
-              for (int i = 0; i < n; i++)
-                dfc[i] = (fc[i] - f0j[i]) / del[c];
+              const size_t s = c / ng;
+              const int g = (int) (c % ng);
+              const double *fc = fpc + (c - c0) * n, *f0s = f0 + s * n;
+              for (int j = 0; j < n; j++)
+                {
+                  if (fd_color (ev, j) != g)
+                    continue;
+                  double *dfc = df + s * n * n + (size_t) j * n;
+                  const double dj = del[s * n + j];
+                  if (ev->jp_ncolors <= 0)
+                    for (int i = 0; i < n; i++)
+                      dfc[i] = (fc[i] - f0s[i]) / dj;
+                  else
+                    {
+                      memset (dfc, 0, (size_t) n * sizeof (double));
+                      for (int r = ev->jp_colptr[j];
+                           r < ev->jp_colptr[j + 1]; r++)
+                        {
+                          const int i = ev->jp_rowind[r];
+                          dfc[i] = (fc[i] - f0s[i]) / dj;
+                        }
+                    }
+                }
             }
         }
     }
   ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
   sym_free (w);
   return st;
+}
+
+/* greedy colouring of a pattern's columns (sym.h) */
+int
+sym_pattern_colors (int n, const int *colptr, const int *rowind,
+                    int *color)
+{
+  if (n < 1 || ! colptr || ! rowind || ! color || colptr[0] != 0)
+    return -1;
+  for (int j = 0; j < n; j++)
+    if (colptr[j + 1] < colptr[j])
+      return -1;
+  const int nnz = colptr[n];
+  for (int r = 0; r < nnz; r++)
+    if (rowind[r] < 0 || rowind[r] >= n)
+      return -1;
+  /* the columns of each row (compressed rows), and the colours a column
+     may not take (mark[c] == j: forbidden for column j) */
+  int *rowptr = sym_calloc ((size_t) n + 1, sizeof (int));
+  int *colind = sym_malloc (((size_t) nnz + 1) * sizeof (int));
+  int *fill = sym_malloc ((size_t) n * sizeof (int));
+  int *mark = sym_malloc ((size_t) n * sizeof (int));
+  int ncolors = -1;
+  if (rowptr && colind && fill && mark)
+    {
+      for (int r = 0; r < nnz; r++)
+        rowptr[rowind[r] + 1]++;
+      for (int i = 0; i < n; i++)
+        {
+          rowptr[i + 1] += rowptr[i];
+          fill[i] = rowptr[i];
+          mark[i] = -1;
+        }
+      for (int j = 0; j < n; j++)
+        for (int r = colptr[j]; r < colptr[j + 1]; r++)
+          colind[fill[rowind[r]]++] = j;
+      ncolors = 0;
+      for (int j = 0; j < n; j++)
+        {
+          /* the colours of the earlier columns that share a row with j */
+          for (int r = colptr[j]; r < colptr[j + 1]; r++)
+            {
+              const int i = rowind[r];
+              for (int q = rowptr[i]; q < rowptr[i + 1] && colind[q] < j;
+                   q++)
+                mark[color[colind[q]]] = j;
+            }
+          int c = 0;
+          while (c < ncolors && mark[c] == j)
+            c++;
+          color[j] = c;
+          if (c == ncolors)
+            ncolors++;
+        }
+    }
+  sym_free (rowptr);
+  sym_free (colind);
+  sym_free (fill);
+  sym_free (mark);
+  return ncolors;
 }
 
 static int

@@ -92,7 +92,23 @@ typedef struct {
   sym_rhs_jac_fn rhs_jac;     /* optional (NULL): f and jac's Df in one
                                  call; counted as a jac call only */
   void *user;                 /* passed to every callback */
+  /* optional (jp_ncolors 0: none): the pattern of Df, compressed
+     columns (jp_colptr: n + 1, jp_rowind: the rows of column j at
+     jp_colptr[j] .. jp_colptr[j+1] - 1), and a colouring of its columns
+     (sym_pattern_colors): finite differences then step all the columns
+     of a colour at once, one state for each colour instead of each
+     column, and Df is zero outside the pattern */
+  const int *jp_colptr, *jp_rowind, *jp_color;
+  int jp_ncolors;
 } sym_system;
+
+/* Colour the columns of an n-by-n pattern (compressed columns, as in
+   sym_system) so that no two columns of one colour have a row in
+   common, greedily in column order: color[j] for each column; returns
+   the number of colours, or -1 when memory runs out or the pattern is
+   not valid (colptr not increasing from 0, a row outside 0..n-1). */
+int sym_pattern_colors (int n, const int *colptr, const int *rowind,
+                        int *color);
 
 typedef struct {
   long nsteps;      /* accepted steps */
@@ -142,6 +158,8 @@ typedef struct {
   sym_jac_fn jac;             /* NULL: finite differences */
   sym_rhs_jac_fn rhs_jac;
   void *user;
+  const int *jp_colptr, *jp_rowind, *jp_color;   /* as in sym_system */
+  int jp_ncolors;
   sym_stats st;
   int jac_probed;             /* the first Df has been probed (see
                                  SYM_JAC_GROSS) */

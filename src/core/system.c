@@ -88,6 +88,14 @@ sym_eval_init (sym_eval *ev, const sym_system *sys)
   ev->jac = sys->jac;
   ev->rhs_jac = sys->rhs_jac;
   ev->user = sys->user;
+  if (sys->jp_ncolors > 0 && sys->jp_colptr && sys->jp_rowind
+      && sys->jp_color)
+    {
+      ev->jp_colptr = sys->jp_colptr;
+      ev->jp_rowind = sys->jp_rowind;
+      ev->jp_color = sys->jp_color;
+      ev->jp_ncolors = sys->jp_ncolors;
+    }
 }
 
 /* A callback's own status: 0 ok, > 0 recoverable, < 0 fatal (mapped to
