@@ -62,6 +62,10 @@
 ## @code{HamiltonianHessFcn} (a handle returning the Hessian), the second
 ## output of @var{fcn}, finite differences of @var{fcn}.
 ## @code{sol.stats.jacobian_source} says which one served.
+## @item JPattern
+## The nonzero pattern of df/dy (2d-by-2d, sparse or full): finite
+## differences then step the columns that share no row together, a few
+## calls of @var{fcn} for a banded system instead of 2d per node.
 ## @item NewtonMatrix
 ## @qcode{"kept"}: Newton's matrix and its LU are kept across steps while
 ## Newton converges fast; @qcode{"new"}: a new one at every step (fewer

@@ -114,6 +114,10 @@
 ## @item Jacobian, HamiltonianHessFcn
 ## Sources of Newton's matrix (above); @code{sol.stats.jacobian_source}
 ## says which one served.
+## @item JPattern
+## The nonzero pattern of df/dy (2d-by-2d, sparse or full): finite
+## differences then step the columns that share no row together, a few
+## calls of @var{fcn} for a banded system instead of 2d.
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's relative tolerance (1e-14; fixed steps converge to
 ## NewtonTol/1000) and iterations per solve (10).

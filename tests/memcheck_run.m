@@ -11,9 +11,9 @@
 ## source, Vectorized, Separable, backwards, Stats; bad inputs (errors
 ## raised in the MEX layer), errors thrown by the user's functions in the
 ## middle of a run, NaN from FCN, Newton and MaxSteps failures (warnings
-## with partial results), SecondOrder and odeSV's methods.  Returns 0 if
-## all results were as expected, 1 otherwise (valgrind's own findings are
-## judged by check_memory.sh).
+## with partial results), SecondOrder, odeSV's methods, JPattern.
+## Returns 0 if all results were as expected, 1 otherwise (valgrind's own
+## findings are judged by check_memory.sh).
 ## Not a test_*.m file: the test runner does not run it.
 ## @end deftypefn
 
@@ -176,6 +176,12 @@ function status = memcheck_run ()
   nbad += check (numel (t) == 21 && all (isfinite (y(:))), "suzuki4", "implicit");
   nbad += expect_error (@odeSV, "Octave:invalid-input-arg", kep, [0 1], y0k, struct ("Method", "ruth3", "TimeStepSize", 0.05));
   nbad += expect_error (@odeSV, "Octave:invalid-input-arg", kep, [0 1], y0k, struct ("Method", "yoshida4"));
+  ## JPattern (sparse and full), finite differences by colours
+  for pat = {sparse([0 0 1 0; 0 0 0 1; 1 1 0 0; 1 1 0 0]), logical([0 0 1 0; 0 0 0 1; 1 1 0 0; 1 1 0 0])}
+    sol = odeSPVI (kep, [0 1], y0k, struct ("JPattern", pat{1}, "TimeStepSize", 0.1));
+    nbad += check (numel (sol.x) == 11 && sol.stats.nfdevals > 0, "odeSPVI", "JPattern");
+  endfor
+  nbad += expect_error (@odeSV, "Octave:invalid-input-arg", kep, [0 1], y0k, struct ("JPattern", eye (2)));
 
   printf ("memcheck_run: %d unexpected results\n", nbad);
   status = double (nbad > 0);

@@ -245,6 +245,51 @@ parse_jacobian (const char *solver, const mxArray *v, int n)
   return v;
 }
 
+/* JPattern: the nonzero pattern of df/dy, a real or logical n-by-n
+   matrix (full or sparse), as compressed columns with a colouring of
+   them for the finite differences */
+static void
+parse_jpattern (const char *solver, const mxArray *v, int n, symmex_opts *o)
+{
+  char buf[64];
+  if (! (is_real_numeric (v) || mxIsLogical (v)) || ! symmex_is_size (v, n, n))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: JPattern must be a real or "
+                       "logical %dx%d matrix (the nonzero pattern of df/dy), "
+                       "got %s", solver, n, n,
+                       symmex_describe (v, buf, sizeof buf));
+  mxArray *a = mxIsLogical (v) || mxIsSparse (v) ? NULL
+               : symmex_to_double (v);
+  int *cp = mxCalloc ((size_t) n + 1, sizeof (int));
+  size_t cap = 16, nnz = 0;
+  int *ri = mxMalloc (cap * sizeof (int));
+  const mxLogical *lv = mxIsLogical (v) ? mxGetData (v) : NULL;
+  const double *dv = lv ? NULL : a ? mxGetPr (a) : mxGetPr (v);
+  for (int j = 0; j < n; j++)
+    {
+      /* a sparse matrix's stored entries (in the order of their rows), or
+         every entry of a full one; those that are not zero */
+      const mwIndex *jc = mxIsSparse (v) ? mxGetJc (v) : NULL;
+      const mwIndex *ir = mxIsSparse (v) ? mxGetIr (v) : NULL;
+      const size_t q0 = jc ? jc[j] : (size_t) j * n;
+      const size_t q1 = jc ? jc[j + 1] : (size_t) (j + 1) * n;
+      for (size_t q = q0; q < q1; q++)
+        {
+          if (lv ? ! lv[q] : dv[q] == 0.0)
+            continue;
+          if (nnz == cap)
+            ri = mxRealloc (ri, (cap *= 2) * sizeof (int));
+          ri[nnz++] = ir ? (int) ir[q] : (int) (q - q0);
+        }
+      cp[j + 1] = (int) nnz;
+    }
+  o->jp_colptr = cp;
+  o->jp_rowind = ri;
+  o->jp_color = mxMalloc ((size_t) n * sizeof (int));
+  o->jp_ncolors = sym_pattern_colors (n, cp, ri, o->jp_color);
+  if (o->jp_ncolors < 1)
+    o->jp_ncolors = 0;   /* (an empty pattern: nothing to colour) */
+}
+
 /* Fixed steps, Newton's controls, MaxSteps */
 static void
 parse_steps (const char *solver, const mxArray *opts, symmex_opts *o)
@@ -300,6 +345,8 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
                   ? symmex_on_off (solver, v, "Vectorized") : 0;
   if ((v = symmex_field (solver, opts, "Jacobian")))
     o->jacobian = parse_jacobian (solver, v, n);
+  if ((v = symmex_field (solver, opts, "JPattern")))
+    parse_jpattern (solver, v, n, o);
   o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");
   o->hamiltonian = function_opt (solver, opts, "Hamiltonian");
   o->dense = (v = symmex_field (solver, opts, "Dense"))
@@ -309,8 +356,8 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   /* odeset fields that would change the problem solved: not taken (a
      projection onto y >= 0 would break the symplectic map; Hamilton's
      equations have no mass matrix), and said so rather than ignored
-     silently.  odeset's hints for other solvers (JPattern, MaxOrder, BDF,
-     ...) are ignored. */
+     silently.  odeset's hints for other solvers (MaxOrder, BDF, ...)
+     are ignored. */
   static const char *unsupported[] = { "NonNegative", "Mass" };
   for (size_t i = 0; i < sizeof unsupported / sizeof *unsupported; i++)
     if (symmex_field (solver, opts, unsupported[i]))

@@ -265,5 +265,9 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
              : symmex_cb_jac;
   sys->rhs_jac = c->jac_source == JAC_FCN2 ? symmex_cb_rhs_jac : NULL;
   sys->user = c;
+  sys->jp_colptr = o->jp_colptr;
+  sys->jp_rowind = o->jp_rowind;
+  sys->jp_color = o->jp_color;
+  sys->jp_ncolors = o->jp_ncolors;
   return c;
 }

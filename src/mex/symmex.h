@@ -93,6 +93,10 @@ typedef struct symmex_opts_s {
   int stats;
   int vectorized;
   const mxArray *jacobian;    /* matrix or handle, or NULL */
+  /* JPattern as compressed columns and their colouring (jp_ncolors 0:
+     none) */
+  int *jp_colptr, *jp_rowind, *jp_color;
+  int jp_ncolors;
   const mxArray *hessfcn;     /* handle or NULL */
   double h_fixed;
   long nsteps_fixed;
