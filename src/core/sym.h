@@ -297,8 +297,6 @@ typedef struct {
   int symmetric;
   int stages;
   const double *coef;
-  /* splittings that hold only for a quadratic T(p) (Nystrom methods) */
-  int nystrom;
 } sym_splitting;
 extern const sym_splitting sym_splittings[];
 /* the index of the method called name (any case), or -1 */

@@ -128,18 +128,18 @@ static const double blanesmoan6[] = {
 };
 
 const sym_splitting sym_splittings[] = {
-  { "verlet", SYM_COMPOSITION, 2, 1, 1, verlet, 0 },
-  { "yoshida4", SYM_COMPOSITION, 4, 1, 3, yoshida4, 0 },
-  { "suzuki4", SYM_COMPOSITION, 4, 1, 5, suzuki4, 0 },
-  { "kahanli6", SYM_COMPOSITION, 6, 1, 9, kahanli6, 0 },
-  { "kahanli8", SYM_COMPOSITION, 8, 1, 17, kahanli8, 0 },
-  { "mclachlan8", SYM_COMPOSITION, 8, 1, 15, mclachlan8, 0 },
-  { "sofspa10", SYM_COMPOSITION, 10, 1, 35, sofspa10, 0 },
-  { "ruth3", SYM_SPLITTING, 3, 0, 3, ruth3, 0 },
-  { "candyrozmus4", SYM_SPLITTING, 4, 1, 4, candyrozmus4, 0 },
-  { "mclachlan4", SYM_SPLITTING, 4, 0, 4, mclachlan4, 1 },
-  { "blanesmoan6", SYM_SPLITTING, 6, 1, 12, blanesmoan6, 1 },
-  { NULL, 0, 0, 0, 0, NULL, 0 }
+  { "verlet", SYM_COMPOSITION, 2, 1, 1, verlet },
+  { "yoshida4", SYM_COMPOSITION, 4, 1, 3, yoshida4 },
+  { "suzuki4", SYM_COMPOSITION, 4, 1, 5, suzuki4 },
+  { "kahanli6", SYM_COMPOSITION, 6, 1, 9, kahanli6 },
+  { "kahanli8", SYM_COMPOSITION, 8, 1, 17, kahanli8 },
+  { "mclachlan8", SYM_COMPOSITION, 8, 1, 15, mclachlan8 },
+  { "sofspa10", SYM_COMPOSITION, 10, 1, 35, sofspa10 },
+  { "ruth3", SYM_SPLITTING, 3, 0, 3, ruth3 },
+  { "candyrozmus4", SYM_SPLITTING, 4, 1, 4, candyrozmus4 },
+  { "mclachlan4", SYM_SPLITTING, 4, 0, 4, mclachlan4 },
+  { "blanesmoan6", SYM_SPLITTING, 6, 1, 12, blanesmoan6 },
+  { NULL, 0, 0, 0, 0, NULL }
 };
 
 int
