@@ -74,6 +74,25 @@ fpu_pattern (void)
   colptr[N] = nz;
 }
 
+/* the chain as the core evaluates it: batched or not, with the pattern
+   cp, ri and its colouring (nc colours) or none (nc = 0) */
+static sym_eval
+fpu_eval (int batch, const int *cp, const int *ri, const int *color, int nc)
+{
+  sym_system sys;
+  memset (&sys, 0, sizeof sys);
+  sys.dim = D;
+  sys.rhs = fpu_rhs;
+  sys.rhs_batch = batch ? fpu_batch : NULL;
+  sys.jp_colptr = cp;
+  sys.jp_rowind = ri;
+  sys.jp_color = color;
+  sys.jp_ncolors = nc;
+  sym_eval ev;
+  sym_eval_init (&ev, &sys);
+  return ev;
+}
+
 /* no two columns of a colour share a row */
 static int
 valid_colors (int n, const int *cp, const int *ri, const int *color,
@@ -147,20 +166,8 @@ check_jacobians (void)
       long states[2];
       for (int pat = 0; pat < 2; pat++)
         {
-          sym_system sys;
-          memset (&sys, 0, sizeof sys);
-          sys.dim = D;
-          sys.rhs = fpu_rhs;
-          sys.rhs_batch = batch ? fpu_batch : NULL;
-          if (pat)
-            {
-              sys.jp_colptr = colptr;
-              sys.jp_rowind = rowind;
-              sys.jp_color = color;
-              sys.jp_ncolors = nc;
-            }
-          sym_eval ev;
-          sym_eval_init (&ev, &sys);
+          sym_eval ev = fpu_eval (batch, colptr, rowind, color,
+                                  pat ? nc : 0);
           nstates = 0;
           int st = sym_jac (&ev, 0.0, y, f0, df[pat]);
           CHECK (st == SYM_SUCCESS, "sym_jac: %s", sym_status_name (st));
@@ -190,16 +197,7 @@ check_jacobians (void)
   for (int j = 1; j <= N; j++)
     cp2[j] = colptr[j] - 1;
   const int nc2 = sym_pattern_colors (N, cp2, ri2, c2);
-  sym_system sys;
-  memset (&sys, 0, sizeof sys);
-  sys.dim = D;
-  sys.rhs = fpu_rhs;
-  sys.jp_colptr = cp2;
-  sys.jp_rowind = ri2;
-  sys.jp_color = c2;
-  sys.jp_ncolors = nc2;
-  sym_eval ev;
-  sym_eval_init (&ev, &sys);
+  sym_eval ev = fpu_eval (0, cp2, ri2, c2, nc2);
   double dm[N * N];
   int st = sym_jac (&ev, 0.0, y, f0, dm);
   CHECK (st == SYM_SUCCESS && dm[(D + 1) + 0 * N] == 0.0
