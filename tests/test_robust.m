@@ -167,3 +167,17 @@
 %! end_unwind_protect
 %! assert (st < 128, sprintf ("exit status %d:\n%s", st, out));   # no signal
 %! assert (! isempty (regexp (out, "error: odeSV: out of memory for the output after t = 0\\.\\d+ \\(\\d+ rows\\)")), out);
+
+%!test
+%! ## a workspace that cannot be had: Newton's matrix of odeSPVI with 40
+%! ## nodes at d = 2000 (205 GB) is an error naming the solver and the
+%! ## size, before any step
+%! d = 2000;
+%! o = symplecticset ("TimeStepSize", 0.05, "Nodes", 40);
+%! try
+%!   odeSPVI (@(t, y) [y(d+1:end); -y(1:d)], [0 0.1], ones (2*d, 1), o);
+%!   error ("no error");
+%! catch e
+%!   assert (e.identifier, "Octave:out-of-memory");
+%!   assert (! isempty (regexp (e.message, "^odeSPVI: out of memory: the integrator's workspace needs a block of 2\\d\\d GB")), e.message);
+%! end_try_catch

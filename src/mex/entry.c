@@ -6,6 +6,7 @@
    through its descriptor. */
 #include "symmex.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 /* The driver's options for the run: output times or every step (sol:
@@ -43,12 +44,36 @@ driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
   d->dense_user = c;
 }
 
+size_t symmex_alloc_failed;
+
+/* The core's allocator: mxMalloc (Octave frees it however the call
+   ends), except that a block of SYMMEX_PROBE_BYTES or more is first
+   tried with malloc, so that one that cannot be had comes back as NULL:
+   the core then stops with SYM_ENOMEM, said with the block's size and
+   the solver's name (mxMalloc's own error names the gateway) */
+static void *
+core_alloc (size_t nbytes)
+{
+  if (nbytes >= SYMMEX_PROBE_BYTES)
+    {
+      void *p = malloc (nbytes);
+      if (! p)
+        {
+          symmex_alloc_failed = nbytes;
+          return NULL;
+        }
+      free (p);
+    }
+  return mxMalloc (nbytes);
+}
+
 void
 symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
             const mxArray *prhs[])
 {
   const char *name = m->name;
-  sym_set_allocator (mxMalloc, mxFree);
+  symmex_alloc_failed = 0;
+  sym_set_allocator (core_alloc, mxFree);
 
   symmex_args a;
   symmex_opts o;

@@ -153,6 +153,11 @@ symmex_report (const symmex_method *m, const void *own,
                           "t = %.15g", name, treached, tlast);
       break;
     case SYM_ENOMEM:
+      if (symmex_alloc_failed)
+        mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory: the "
+                           "integrator's workspace needs a block of %.3g GB "
+                           "that cannot be allocated", name,
+                           (double) symmex_alloc_failed / 1e9);
       mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory", name);
       break;
     case SYM_EOUTPUT:

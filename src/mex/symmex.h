@@ -54,6 +54,10 @@ extern const symmex_method symmex_method_spvi;
 extern const symmex_method *const symmex_methods[];
 
 /* The whole call of a solver: NAME (fcn, tspan, y0, opts, p1, ...). */
+/* the size of a block of the core's that could not be allocated in this
+   call (0: none); blocks of SYMMEX_PROBE_BYTES or more are tried first */
+#define SYMMEX_PROBE_BYTES ((size_t) 64 << 20)
+extern size_t symmex_alloc_failed;
 void symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[],
                  int nrhs, const mxArray *prhs[]);
 
