@@ -48,7 +48,9 @@ size_t symmex_alloc_failed;
 
 /* The core's allocator: mxMalloc (Octave frees it however the call
    ends), except that a block of SYMMEX_PROBE_BYTES or more is first
-   tried with malloc, so that one that cannot be had comes back as NULL:
+   tried with malloc and freed at once (nothing is held outside the
+   hook, and no user code runs in between), so that one that cannot be
+   had comes back as NULL:
    the core then stops with SYM_ENOMEM, said with the block's size and
    the solver's name (mxMalloc's own error names the gateway) */
 static void *
