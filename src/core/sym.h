@@ -47,9 +47,14 @@ enum {
   SYM_ENONFINITE = -6,     /* non-finite values that a smaller step cannot cure */
   SYM_EMAXSTEPS = -7,      /* more steps than allowed */
   SYM_EOUTPUT = -8,        /* the output sink reported an error */
-  SYM_EOVERFLOW = -9       /* a step's result overflowed (NaN or Inf in y,
+  SYM_EOVERFLOW = -9,      /* a step's result overflowed (NaN or Inf in y,
                               f finite), with the fixed or the least step */
+  SYM_EDENSITY = -10       /* the step density of a reversible run was not
+                              a positive finite number */
 };
+
+/* the step control of a run without fixed steps */
+enum { SYM_CONTROL_ERROR = 0, SYM_CONTROL_REVERSIBLE = 1 };
 
 /* Ways a run ends well (returned by sym_integrate) */
 enum {
@@ -267,6 +272,10 @@ typedef struct {
   /* the degree of the dense output's polynomial on a step (at most) */
   int (*dense_degree) (const void *state);
   void (*free) (void *state);
+  /* f at the end of the last accepted step into f: the step's own value
+     when it has one, else evaluated (and kept for the dense output and
+     the next step) */
+  int (*end_f) (void *state, sym_eval *ev, double *f);
 } sym_stepper_type;
 
 /* odeSE and odeSV: explicit steps for H = T(p) + V(q); second_order: f_q
@@ -329,6 +338,10 @@ typedef int (*sym_output_fn) (double t, const double *y, void *user);
 /* Event sink: an event located at (te, ye), index ie (0-based). */
 typedef int (*sym_eventout_fn) (double te, const double *ye, int ie,
                                 void *user);
+/* The step density rho(t, y) > 0 of a reversible run (1 / time): its
+   steps are eps / rho (sym_driver_opts.step_control) */
+typedef int (*sym_density_fn) (double t, const double *y, double *rho,
+                               void *user);
 /* Dense sink: the dense output of the accepted step [t, tnew] at the
    Chebyshev-Lobatto points t + th_i (tnew - t), th_i = (1 - cos (pi i /
    (k + 1))) / 2, i = 0..k+1 (enough for the step's polynomial, of degree
@@ -354,6 +367,18 @@ typedef struct {
   sym_tolerances tol;
   double h0;           /* 0: automatic; inf: as long as hmax allows */
   double hmax;         /* 0: |tf - t0| / 10; inf: no cap (as ode45) */
+  /* SYM_CONTROL_REVERSIBLE: steps h_{n+1/2} = eps / rho_{n+1/2} from the
+     time-symmetric recurrence (rho_{n-1/2} + rho_{n+1/2}) / 2 = rho(t_n,
+     y_n), eps = min (rtol^(1/p), SYM_REV_EPS_MAX) for a method of order
+     p; rho is density (NULL: |f(t, y)| / sqrt (|y|^2 + |atol|^2), atol
+     as n values, with f at the step points); h0 the first step (0: the
+     first density from SYM_REV_START trial steps); hmax 0: no cap.  No
+     error estimate: the steps solve as fixed ones do, and a failed one
+     ends the run.  Reversible for a symmetric method: the steps from the
+     end back, the first one the forward run's last, retrace them. */
+  int step_control;
+  sym_density_fn density;
+  void *density_user;
   long max_steps;      /* 0: no limit */
   /* events */
   int nevents;

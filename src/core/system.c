@@ -63,6 +63,7 @@ sym_status_name (int status)
     case SYM_EMAXSTEPS: return "SYM_EMAXSTEPS";
     case SYM_EOUTPUT: return "SYM_EOUTPUT";
     case SYM_EOVERFLOW: return "SYM_EOVERFLOW";
+    case SYM_EDENSITY: return "SYM_EDENSITY";
     case SYM_STOP_OUTPUT: return "SYM_STOP_OUTPUT";
     case SYM_STOP_EVENT: return "SYM_STOP_EVENT";
     default: return status > 0 ? "SYM_RECOVERABLE" : "SYM_ECALLBACK";

@@ -95,6 +95,14 @@
 /* the predictive factor takes errors no smaller than this, so that
    round-off level errors make no trend */
 #define SYM_CTRL_ERR_FLOOR 1e-2
+/* Reversible control: the largest eps (steps of eps / rho), beyond which
+   the density changes too much within a step for its recurrence to
+   follow it; the trial steps that find the first density; and the least
+   rho_{n+1/2} as a fraction of rho(y_n), which keeps a density that
+   falls by more than that within a step positive (not reversible there) */
+#define SYM_REV_EPS_MAX 0.1
+#define SYM_REV_START 2
+#define SYM_REV_FLOOR 0.25
 /* The least step is 16 ulps of t: t + h then moves by more than t's
    round-off; and 4 ulps of the span: a run creeping towards a
    singularity stops, and a step that fails at every size fails about 52

@@ -118,7 +118,7 @@ static int ex_degree (const void *st) { (void) st; return 12; }
 
 const sym_stepper_type drv_exact_type = {
   "exact", ex_alloc, ex_order, no_tolerances, ex_step, ex_accept, ex_dense,
-  ex_samples, ex_degree, ex_free
+  ex_samples, ex_degree, ex_free, NULL
 };
 
 /* ------------------------------------------------------------ midpoint */
@@ -206,7 +206,7 @@ static int mid_degree (const void *st) { (void) st; return 3; }
 
 const sym_stepper_type drv_mid_type = {
   "midpoint", mid_alloc, mid_order, no_tolerances, mid_step, mid_accept,
-  mid_dense, mid_samples, mid_degree, ex_free
+  mid_dense, mid_samples, mid_degree, ex_free, NULL
 };
 
 /* ------------------------------------------------------------ sinks */

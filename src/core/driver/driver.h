@@ -34,6 +34,11 @@ typedef struct {
   double h_rejected;       /* the size of the last rejected step */
   double h_acc, err_acc;   /* the last accepted step (predictive control) */
   double tcomp;            /* the steps' sum minus t (round-off) */
+  /* reversible control: eps, the density of the step to take
+     (rho_{n+1/2}), f at a step point (n) */
+  int reversible;
+  double eps, rho_half;
+  double *fn;
   long jac_checked_at;     /* nsteps at the last sym_jac_check */
   int jac_agreed;          /* its checks that found Df right */
   /* events */
@@ -69,6 +74,14 @@ int sym_initial_step (sym_eval *ev, double t0, const double *y0,
                       const double *f0, double dir, int q,
                       const sym_tolerances *tol, double hmax, double *work,
                       double *h_out);
+
+/* Reversible control (reversible.c): eps and the first step's density
+   (rho_half) from (t0, y0); the next density after the accepted step that
+   ended at (t, y), the current point */
+int sym_rev_start (sym_run *r);
+int sym_rev_next (sym_run *r);
+/* the next step's size: eps / rho_half, capped by a MaxStep given */
+double sym_rev_step (const sym_run *r);
 
 /* ---------------------------------------------------------------- events */
 /* The event values at (t, y) into v (the callback's failure maps to a

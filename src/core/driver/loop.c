@@ -77,7 +77,8 @@ new_stepper (sym_run *r)
   r->state = r->type->alloc (r->ev.dim, &r->mo, &st);
   if (! r->state)
     return st ? st : SYM_ENOMEM;
-  if (! r->fixed && (st = r->type->set_tolerances (r->state, &r->o->tol)))
+  if (! r->fixed && ! r->reversible
+      && (st = r->type->set_tolerances (r->state, &r->o->tol)))
     return st;
   r->type->order (r->state, &r->q);
   return SYM_SUCCESS;
@@ -97,7 +98,7 @@ run_alloc (sym_run *r)
   if (r->nd < 0)
     r->nd = 0;
   const int ns = r->ns;
-  double *w = sym_calloc ((size_t) (9 + r->nd) * n
+  double *w = sym_calloc ((size_t) (10 + r->nd) * n
                           + (7 + (size_t) ns) * ne + 1, sizeof (double));
   int *iw = sym_calloc ((size_t) 3 * ne + 1, sizeof (int));
   r->y = w;
@@ -117,6 +118,7 @@ run_alloc (sym_run *r)
   r->tcand = r->vcb + ne;
   r->vs = r->tcand + ne;
   r->yd = r->vs + (size_t) ns * ne;     /* n (nd + 2) */
+  r->fn = r->yd + (size_t) (r->nd + 2) * n;
   r->edir = iw + ne;
   r->kfound = iw + 2 * ne;
   return SYM_SUCCESS;
@@ -164,6 +166,8 @@ run_start (sym_run *r)
         }
       return SYM_SUCCESS;
     }
+  if (r->reversible)
+    return sym_rev_start (r);
   /* as in ode45: MaxStep = Inf lifts the default cap */
   r->user_hmax = o->hmax > 0;
   r->hmax = r->user_hmax ? o->hmax : 0.1 * fabs (o->tf - o->t0);
@@ -210,8 +214,11 @@ schedule (sym_run *r, double *hs, double *tnew, int *last)
       const double rem = fabs (r->tend - t), hmin = hmin_at (r, t);
       /* below the least step the round-off of t swamps the step: a
          smaller h is raised to it, a MaxStep the user set below it ends
-         the run */
-      r->h = fmax (r->h, r->user_hmax ? fmin (hmin, r->hmax) : hmin);
+         the run; a reversible step is what its density says */
+      if (r->reversible)
+        r->h = sym_rev_step (r);
+      else
+        r->h = fmax (r->h, r->user_hmax ? fmin (hmin, r->hmax) : hmin);
       /* a remainder below the least step, or round-off of the span, joins
          this step */
       if (r->h >= rem
@@ -272,7 +279,7 @@ static int
 reject (sym_run *r, double hs, int st, int overflow, double err)
 {
   r->ev.st.cnt.nfailed++;
-  if (r->fixed)
+  if (r->fixed || r->reversible)
     return overflow ? SYM_EOVERFLOW
            : fatal_from (st > 0 ? st : SYM_NONFINITE, 0);
   double fac = st > 0 || overflow ? SYM_CTRL_FACFAIL
@@ -337,6 +344,8 @@ commit (sym_run *r, double hs, double tnew, int last, double err)
     r->ytyp[i] = fmax (r->ytyp[i], fabs (r->y[i]));
   if (r->ne)
     memcpy (r->vold, r->vnew, (size_t) r->ne * sizeof (double));
+  if (r->reversible)
+    return last ? RUN_ON : (st = sym_rev_next (r)) ? st : RUN_ON;
   if (! r->fixed)
     {
       double fac = sym_step_factor (err, r->q, SYM_CTRL_FACMIN,
@@ -363,8 +372,9 @@ advance (sym_run *r)
       int last, again, st = schedule (r, &hs, &tnew, &last);
       if (st)
         return st > 0 ? SYM_DONE : st;
+      const int control = ! r->fixed && ! r->reversible;
       st = r->type->step (r->state, &r->ev, r->t, hs, tnew, r->y, r->ynew,
-                          r->fixed ? NULL : r->yerr);
+                          control ? r->yerr : NULL);
       if ((st = check_jacobian (r, st, &again)) < 0)
         return st;
       if (again)
@@ -376,9 +386,9 @@ advance (sym_run *r)
       for (int i = 0; st == 0 && i < n; i++)
         if (! isfinite (r->ynew[i]))
           overflow = 1;
-      if (st == 0 && ! overflow && ! r->fixed)
+      if (st == 0 && ! overflow && control)
         err = sym_error_norm (n, r->yerr, r->y, r->ynew, &r->o->tol);
-      if (st > 0 || overflow || (! r->fixed && ! (err <= 1.0)))
+      if (st > 0 || overflow || (control && ! (err <= 1.0)))
         {
           if ((st = reject (r, hs, st, overflow, err)))
             return st;
@@ -396,6 +406,7 @@ sym_integrate (const sym_stepper_type *type, const sym_system *sys,
   sym_run r;
   memset (&r, 0, sizeof (r));
   r.fixed = o->h_fixed > 0 || o->nsteps_fixed > 0;
+  r.reversible = ! r.fixed && o->step_control == SYM_CONTROL_REVERSIBLE;
   int result = check_input (sys, o, r.fixed);
   if (result)
     {

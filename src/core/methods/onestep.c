@@ -170,6 +170,24 @@ recs_dense (const sym_recs *r, double t, double *y)
   return SYM_SUCCESS;
 }
 
+int
+sym_onestep_end_f (void *state, sym_eval *ev, double *f)
+{
+  sym_recs *r = &((sym_onestep *) state)->r;
+  sym_rec *c = r->cur;
+  if (! r->have_cur)
+    return SYM_EBADINPUT;
+  if (! c->have_f1)
+    {
+      int st = sym_rhs (ev, c->tend, c->y1, c->f1);
+      if (st)
+        return st;
+      c->have_f1 = 1;
+    }
+  memcpy (f, c->f1, (size_t) r->n * sizeof (double));
+  return SYM_SUCCESS;
+}
+
 void
 sym_rec_hermite (const sym_rec *c, int n, double th, double *y)
 {

@@ -246,5 +246,8 @@ int sym_onestep_dense (void *state, sym_eval *ev, double t, double *y);
 int sym_onestep_dense_samples (const void *state);
 int sym_onestep_dense_degree (const void *state);
 void sym_onestep_free (void *state);
+/* f at the end of the last accepted step (evaluated if not known, and
+   kept: the next step starts with it) */
+int sym_onestep_end_f (void *state, sym_eval *ev, double *f);
 
 #endif

@@ -132,7 +132,8 @@ se_step (void *state, sym_eval *ev, double t, double h, double tend,
 static const sym_stepper_type se_type = {
   "se", se_alloc, sym_onestep_order, sym_onestep_set_tolerances,
   se_step, sym_onestep_accept, sym_onestep_dense,
-  sym_onestep_dense_samples, sym_onestep_dense_degree, sym_onestep_free
+  sym_onestep_dense_samples, sym_onestep_dense_degree, sym_onestep_free,
+  sym_onestep_end_f
 };
 
 const sym_stepper_type *const sym_step_se = &se_type;

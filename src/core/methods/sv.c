@@ -280,7 +280,8 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
 static const sym_stepper_type sv_type = {
   "sv", sv_alloc, sym_onestep_order, sym_onestep_set_tolerances,
   sv_step, sym_onestep_accept, sym_onestep_dense,
-  sym_onestep_dense_samples, sym_onestep_dense_degree, sym_onestep_free
+  sym_onestep_dense_samples, sym_onestep_dense_degree, sym_onestep_free,
+  sym_onestep_end_f
 };
 
 const sym_stepper_type *const sym_step_sv = &sv_type;

@@ -432,9 +432,31 @@ spvi_dense_degree (const void *state)
   return s->n - 1 == s->m ? M + 2 : deg > 3 ? deg : 3;
 }
 
+/* f at the end of the last accepted step: the dense output's, or
+   evaluated and kept for it and for the next step's start */
+static int
+spvi_end_f (void *state, sym_eval *ev, double *f)
+{
+  spvi_state *s = state;
+  spvi_rec *cu = s->cur;
+  const size_t n = 2 * (size_t) s->d;
+  if (! s->have_cur)
+    return SYM_EBADINPUT;
+  if (! cu->have_fe1)
+    {
+      int st = sym_rhs (ev, cu->tend, cu->y1, cu->fe1);
+      if (st)
+        return st;
+      cu->have_fe1 = 1;
+    }
+  memcpy (f, cu->fe1, n * sizeof (double));
+  return SYM_SUCCESS;
+}
+
 static const sym_stepper_type spvi_type = {
   "spvi", spvi_alloc, spvi_order, spvi_set_tolerances, spvi_step,
-  spvi_accept, spvi_dense, spvi_dense_samples, spvi_dense_degree, spvi_free
+  spvi_accept, spvi_dense, spvi_dense_samples, spvi_dense_degree, spvi_free,
+  spvi_end_f
 };
 
 const sym_stepper_type *const sym_step_spvi = &spvi_type;
