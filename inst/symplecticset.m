@@ -62,6 +62,15 @@
 ## @code{odeSV}: @qcode{"on"} sums the updates of explicit fixed steps
 ## with compensation, which keeps the round-off of the energy of very
 ## long runs near that of a single step.  Default @qcode{"off"}.
+## @item StepControl
+## Adaptive steps: @qcode{"standard"} (error estimates, as
+## @code{ode45}) or @qcode{"reversible"} (a time-symmetric step density
+## that keeps the energy error bounded; @code{odeSV} and @code{odeSPVI},
+## see @code{help odeSV}).  Default @qcode{"standard"}.
+## @item StepDensityFcn
+## With @code{StepControl} @qcode{"reversible"}: handle
+## @code{rho = fcn (t, y, @dots{})} returning the step density rho > 0
+## (1/time; the steps are eps/rho).  Default: |f(t,y)| / |y|.
 ## @item NewtonTol
 ## Stopping tolerance of Newton's method, relative to the size of q for
 ## the unknowns of q and to the size of p for those of p (in the units of
@@ -126,7 +135,8 @@ function opts = symplecticset (varargin)
                        "HamiltonianHessFcn", "Separable", "Explicit", ...
                        "SecondOrder", "Method", "CompensatedSummation", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
-                       "MaxSteps", "Hamiltonian", "Dense"};
+                       "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
+                       "StepDensityFcn"};
   persistent odeset_fields = fieldnames (odeset ());
 
   if (nargin == 0 && nargout == 0)
@@ -148,6 +158,8 @@ function opts = symplecticset (varargin)
     printf ("           MaxSteps:  integer, >0, [] (no limit)\n");
     printf ("        Hamiltonian:  function handle, []\n");
     printf ("              Dense:  {[\"off\"], \"on\"}\n");
+    printf ("        StepControl:  {[\"standard\"], \"reversible\"}\n");
+    printf ("     StepDensityFcn:  function handle, []\n");
     return;
   endif
 

@@ -431,3 +431,20 @@ symmex_cb_events (double t, const double *y, double *value, int *isterminal,
   return 0;
 }
 
+
+int
+symmex_cb_density (double t, const double *y, double *rho, void *user)
+{
+  symmex_ctx *c = user;
+  mxGetPr (c->dargs[1])[0] = t;
+  memcpy (mxGetPr (c->dargs[2]), y, sizeof (double) * c->n);
+  mxArray *out = NULL;
+  symmex_call (1, &out, c->nargs, c->dargs, c->dname);
+  const double *v = symmex_checked (c, &out, 1, "StepDensityFcn", 0, t,
+                                    "a real scalar");
+  /* the core refuses a value that is not positive and finite */
+  *rho = c->density = v[0];
+  c->density_t = t;
+  mxDestroyArray (out);
+  return 0;
+}

@@ -34,6 +34,10 @@ driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
   d->h0 = o->h0;
   d->hmax = o->hmax;
   d->max_steps = o->max_steps;
+  d->step_control = o->reversible ? SYM_CONTROL_REVERSIBLE
+                    : SYM_CONTROL_ERROR;
+  d->density = o->densityfcn ? symmex_cb_density : NULL;
+  d->density_user = c;
   d->nevents = c->nevents;
   d->events = c->nevents > 0 ? symmex_cb_events : NULL;
   d->event_user = c;
@@ -83,6 +87,10 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   symmex_parse_options (name, &a, &o);
   void *own = mxCalloc (1, m->own_size);
   m->parse (name, a.opts && ! mxIsEmpty (a.opts) ? a.opts : NULL, own);
+  const char *why = o.reversible ? m->asymmetric (own) : NULL;
+  if (why)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: StepControl \"reversible\" needs "
+                       "a symmetric method; %s", name, why);
 
   const sym_stepper_type *type = m->stepper ? m->stepper (name, own, &o)
                                  : *m->type;

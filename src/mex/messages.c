@@ -147,6 +147,13 @@ symmex_report (const symmex_method *m, const void *own,
                           "too small at t = %.15g; returning the solution up "
                           "to t = %.15g", name, treached, tlast);
       break;
+    case SYM_EDENSITY:
+      mexWarnMsgIdAndTxt ("symplectic:step-density", "%s: StepDensityFcn "
+                          "returned %s at t = %.15g, not a positive finite "
+                          "density; returning the solution up to t = %.15g",
+                          name, SYMMEX_NUM (c->density, "%g"), c->density_t,
+                          tlast);
+      break;
     case SYM_EMAXSTEPS:
       mexWarnMsgIdAndTxt ("symplectic:max-steps", "%s: MaxSteps reached at "
                           "t = %.15g; returning the solution up to "

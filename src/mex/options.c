@@ -351,6 +351,10 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   o->hamiltonian = function_opt (solver, opts, "Hamiltonian");
   o->dense = (v = symmex_field (solver, opts, "Dense"))
              ? symmex_on_off (solver, v, "Dense") : 0;
+  static const char *const controls[] = { "standard", "reversible", NULL };
+  o->reversible = (v = symmex_field (solver, opts, "StepControl"))
+                  ? symmex_word (solver, v, "StepControl", controls) : 0;
+  o->densityfcn = function_opt (solver, opts, "StepDensityFcn");
   parse_steps (solver, opts, o);
 
   /* odeset fields that would change the problem solved: not taken (a
@@ -462,7 +466,8 @@ static const char *const odeset_names[] = {
 };
 static const char *const common_names[] = {
   "TimeStepSize", "TimeStepNumber", "HamiltonianHessFcn", "NewtonTol",
-  "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", NULL
+  "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", "StepControl",
+  "StepDensityFcn", NULL
 };
 
 /* The edit distance of a and b, without regard to case */
@@ -554,6 +559,15 @@ check_fixed (const char *solver, const mxArray *opts, const symmex_opts *o)
   static const char *const adaptive[] = { "RelTol", "AbsTol", "NormControl",
                                           "InitialStep", "MaxStep", NULL };
   char list[128] = "";
+  if (o->reversible && symmex_fixed (o))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: StepControl \"reversible\" "
+                       "chooses the steps; leave out TimeStepSize and "
+                       "TimeStepNumber (or take StepControl \"standard\")",
+                       solver);
+  if (o->densityfcn && ! o->reversible)
+    mexWarnMsgIdAndTxt ("symplectic:ignored-option", "%s: StepDensityFcn "
+                        "is ignored without StepControl \"reversible\"",
+                        solver);
   if (! symmex_fixed (o))
     return;
   for (int k = 0; adaptive[k]; k++)

@@ -243,6 +243,15 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
     jacobian_source (c, o, have2);
   if (o->events)
     count_events (c, a, o->events);
+  if (o->densityfcn && o->reversible)
+    {
+      c->dargs = mxCalloc (c->nargs, sizeof (mxArray *));
+      memcpy (c->dargs, c->args, sizeof (mxArray *) * c->nargs);
+      c->dargs[0] = (mxArray *) o->densityfcn;
+      c->dargs[1] = mxCreateDoubleScalar (a->tspan[0]);
+      c->dargs[2] = col (c->n);
+      symmex_direct_name (o->densityfcn, c->dname, sizeof c->dname);
+    }
 
   /* nargout = 0 and no OutputFcn plots with odeplot, as ode45 */
   if (nlhs == 0 && ! o->outputfcn)

@@ -45,6 +45,9 @@ typedef struct {
   /* whether FCN is the acceleration a(t, q) of y = [q; v] (f = [v; a]);
      NULL: never */
   int (*second_order) (const void *own);
+  /* why the method's step is not symmetric (StepControl "reversible"
+     needs one), or NULL when it is */
+  const char *(*asymmetric) (const void *own);
 } symmex_method;
 
 extern const symmex_method symmex_method_se;
@@ -109,6 +112,8 @@ typedef struct symmex_opts_s {
   long max_steps;
   const mxArray *hamiltonian; /* H (t, y, ...) for the energy, or NULL */
   int dense;                  /* sol carries the dense output */
+  int reversible;             /* StepControl "reversible" */
+  const mxArray *densityfcn;  /* StepDensityFcn, or NULL */
 } symmex_opts;
 
 /* Parse OPTS (an odeset struct, a plain struct, or []) for a problem of
@@ -173,6 +178,10 @@ typedef struct {
   double *dt, *dy;
   size_t nsteps, dcap;
   int dk;
+  /* StepDensityFcn's arguments, and its last value and t */
+  mxArray **dargs;
+  char dname[64];
+  double density, density_t;
   /* the Hamiltonian at the rows, its largest relative change */
   double *hbuf, max_dh;
 } symmex_ctx;
@@ -194,6 +203,7 @@ int symmex_cb_rhs_jac (double t, const double *y, double *dy, double *df,
                        void *user);
 int symmex_cb_events (double t, const double *y, double *value,
                       int *isterminal, int *direction, void *user);
+int symmex_cb_density (double t, const double *y, double *rho, void *user);
 /* a user's function: args = {f, t, y, ...}, by name when it has one */
 void symmex_call (int nout, mxArray **out, int nargs, mxArray **args,
                   const char *name);

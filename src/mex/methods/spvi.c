@@ -93,7 +93,16 @@ spvi_newton_hint (const void *own)
          : NULL;
 }
 
+/* the Galerkin step with Gauss nodes is symmetric for every pair */
+static const char *
+spvi_asymmetric (const void *own)
+{
+  (void) own;
+  return NULL;
+}
+
 const symmex_method symmex_method_spvi = {
   "odeSPVI", &sym_step_spvi, sizeof (sym_spvi_opts), spvi_parse,
-  spvi_options, spvi_needs_newton, spvi_sol_fields, spvi_newton_hint, NULL
+  spvi_options, spvi_needs_newton, spvi_sol_fields, spvi_newton_hint, NULL,
+  NULL, NULL, spvi_asymmetric
 };

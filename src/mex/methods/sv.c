@@ -51,9 +51,10 @@ sv_stepper (const char *solver, const void *own, const symmex_opts *o)
   const sym_splitting *m = &sym_splittings[s->method];
   if (s->method == 0 && ! s->compensated)
     return sym_step_sv;
-  if (! symmex_fixed (o))
-    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s takes fixed steps: give "
-                       "TimeStepSize or TimeStepNumber", solver,
+  if (! symmex_fixed (o) && ! o->reversible)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s takes fixed steps or "
+                       "StepControl \"reversible\": give TimeStepSize or "
+                       "TimeStepNumber, or set StepControl", solver,
                        s->method ? "Method" : "CompensatedSummation");
   if (m->kind == SYM_SPLITTING && ! s->separable)
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Method \"%s\" is a splitting of "
@@ -80,9 +81,21 @@ sv_sol_fields (mxArray *sol, const void *own, const sym_stats *st)
               mxCreateDoubleScalar (sym_splittings[s->method].order));
 }
 
+static const char *
+sv_asymmetric (const void *own)
+{
+  static char why[96];
+  const sym_onestep_opts *s = own;
+  if (sym_splittings[s->method].symmetric)
+    return NULL;
+  snprintf (why, sizeof why, "Method \"%s\" is not",
+            sym_splittings[s->method].name);
+  return why;
+}
+
 const symmex_method symmex_method_sv = {
   "odeSV", &sym_step_sv, sizeof (sym_onestep_opts), sv_parse,
   sv_options, symmex_onestep_needs_newton, sv_sol_fields, NULL,
   "dH/dp changed with q (or t) at the same p", sv_stepper,
-  symmex_onestep_second_order
+  symmex_onestep_second_order, sv_asymmetric
 };
