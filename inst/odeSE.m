@@ -46,7 +46,10 @@
 ## steps, the default as in @code{ode45}, control the local error
 ## instead; a new step size is a new map, so this guarantee is lost, and
 ## on fast oscillations the step sizes lock to their phase and can drain
-## their energy.  For long runs use a fixed step.
+## their energy.  For long runs use a fixed step.  (@code{StepControl}
+## @qcode{"reversible"}, the adaptive steps that keep the energy bounded,
+## needs a symmetric method: @code{odeSV} or @code{odeSPVI}; odeSE
+## refuses it.)
 ##
 ## @var{tspan} is [t0, tf] (a row at every step) or more times (rows
 ## exactly there, from the dense output, steps unchanged); tf < t0 runs

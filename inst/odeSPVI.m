@@ -38,7 +38,13 @@
 ## energy error oscillates without drift however long the run, and the
 ## momenta of the symmetries of H are conserved to round-off.  Adaptive
 ## steps (the default) control the local error instead, and each new step
-## size is a new map.  Use a fixed step for long runs.
+## size is a new map.  Use a fixed step for long runs, or
+## @code{StepControl} @qcode{"reversible"}: steps that follow a step
+## density by a time-symmetric recurrence, which keeps the energy error
+## bounded like a fixed step while the steps crowd where the motion is
+## fast (@code{help odeSV} says how; here eps = RelTol^(1/order), at most
+## 0.05, and the default density costs one call of @var{fcn} per step).
+## The step being symmetric for every pair (n, m), so is the run.
 ##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
 ## @code{odeSE}; @var{sol} has the fields of @code{ode45} and also order
@@ -54,9 +60,13 @@
 ## Fixed step h, or a number of fixed steps.  The last step ends on tf.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
 ## Adaptive steps, as in @code{ode45} (defaults 1e-3, 1e-6, off,
-## automatic, |tf-t0|/10).  The error is estimated with a companion
+## automatic, |tf-t0|/10; reversible steps: see above).  The error is
+## estimated with a companion
 ## solution of one more mode and one more node, and the run advances with
 ## it, so @code{sol.order} is the companion's.
+## @item StepControl, StepDensityFcn
+## @qcode{"standard"} (default) or @qcode{"reversible"} (above), and the
+## step density of the latter, as for @code{odeSV}.
 ## @item Jacobian, HamiltonianHessFcn
 ## Newton's matrix comes from the first of: @code{Jacobian} (df/dy),
 ## @code{HamiltonianHessFcn} (a handle returning the Hessian), the second
@@ -74,7 +84,8 @@
 ## most 64 unknowns, else @qcode{"kept"}.
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's relative tolerance (1e-14; fixed steps converge to
-## NewtonTol/100) and iterations per solve (10).
+## NewtonTol/100, and so do reversible ones) and iterations per solve
+## (10).
 ## @item Vectorized
 ## @qcode{"on"}: @var{fcn} takes a 2d-by-k matrix of states and a 1-by-k
 ## row of times; all nodes of a Newton iteration then take one call, the

@@ -49,13 +49,41 @@
 ## round-off.  Adaptive steps (the default) control the local error
 ## instead; each new step size is a new map, and on fast oscillations the
 ## step sizes lock to their phase and can pump their energy by orders of
-## magnitude.  For long runs, and for such systems, use a fixed step.
+## magnitude.  For long runs, and for such systems, use a fixed step, or
+## reversible steps.
+##
+## @strong{Reversible steps.}  Where the motion needs small steps in a
+## small part of the orbit (close encounters, eccentric orbits), a fixed
+## step wastes most of its work.  With @code{StepControl}
+## @qcode{"reversible"} the steps follow a step density rho instead:
+## h(k+1/2) = eps/rho(k+1/2), with
+##
+## @example
+## (rho(k-1/2) + rho(k+1/2)) / 2 = rho(t(k), y(k))
+## @end example
+##
+## @noindent
+## at every step point.  The recurrence reads the same backwards, so the
+## whole run is time-reversible (run back from the end, its first step the
+## last one, it retraces the steps) and the energy error stays bounded, as
+## with a fixed step.  rho(t, y) is @code{StepDensityFcn} (steps per unit
+## time; for Kepler's problem @code{@@(t, y) norm (y(1:2))^-1.5}), by
+## default |f(t,y)| / sqrt(|y|^2 + |AbsTol|^2), which needs f at the step
+## points: no extra call with @code{SecondOrder}, one per step otherwise.
+## eps = RelTol^(1/p) for a method of order p, at most 0.05 (beyond it
+## the density changes too much within a step).  @code{InitialStep} is the
+## first step exactly; without it two trial steps find it.  There is no
+## error estimate and no rejected step: a step whose Newton iteration fails
+## ends the run.  The last step is shortened to end on tf, and
+## @code{MaxStep} (no cap by default) bounds the steps; both break the
+## symmetry where they act.
 ##
 ## @strong{Higher order.}  @code{Method} replaces the Verlet step by a
 ## composition of Verlet steps (any H; implicit stages unless
 ## @code{Separable} is on) or by a splitting method (separable H only).
 ## All are symplectic, all but two symmetric (time-reversible); they take
-## fixed steps (@code{TimeStepSize} or @code{TimeStepNumber}).
+## fixed steps (@code{TimeStepSize} or @code{TimeStepNumber}) or, the
+## symmetric ones, reversible steps.
 ##
 ## @multitable @columnfractions 0.2 0.1 0.1 0.6
 ## @headitem Method @tab order @tab stages @tab kind
@@ -101,9 +129,12 @@
 ## Fixed step h, or a number of fixed steps.  The last step ends on tf.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
 ## Adaptive steps, as in @code{ode45} (defaults 1e-3, 1e-6, off,
-## automatic, |tf-t0|/10).  The error estimate is the distance to the
+## automatic, |tf-t0|/10; reversible steps: see above).  The error estimate is the distance to the
 ## trapezoidal rule through the step's ends plus that rule's own leading
 ## error term, so that it holds in q and in p.
+## @item StepControl, StepDensityFcn
+## @qcode{"standard"} (the default): the error-controlled steps above;
+## @qcode{"reversible"}: steps of a step density (above).
 ## @item Separable (alias Explicit)
 ## @qcode{"on"}: explicit leapfrog (above); a warning when @var{fcn}
 ## shows that dH/dp depends on q (or t).  Default @qcode{"off"}.
@@ -120,7 +151,8 @@
 ## calls of @var{fcn} for a banded system instead of 2d.
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's relative tolerance (1e-14; fixed steps converge to
-## NewtonTol/1000) and iterations per solve (10).
+## NewtonTol/1000, and so do reversible ones) and iterations per solve
+## (10).
 ## @item Vectorized
 ## @qcode{"on"}: @var{fcn} takes a 2d-by-k matrix of states and a 1-by-k
 ## row of times; finite-difference matrices then take one call.
@@ -152,6 +184,18 @@
 ##         max (abs (L - L(1))), max (abs (H - H(1))));
 ## plot (t / (2*pi), H - H(1));
 ## xlabel ("periods");  ylabel ("H(t) - H(0)");
+## @end group
+## @end example
+##
+## The same orbit at eccentricity 0.9 with reversible steps, which
+## crowd at the pericentre:
+##
+## @example
+## @group
+## e = 0.9;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+## opts = symplecticset ("StepControl", "reversible", "RelTol", 1e-5,
+##                       "SecondOrder", "on");
+## [t, y] = odeSV (@@(t, q) -q / norm (q)^3, [0 200*pi], y0, opts);
 ## @end group
 ## @end example
 ## @seealso{symdeval, odeSE, odeSPVI, symplecticset, ode45, odeset, odeplot}
@@ -217,6 +261,24 @@ endfunction
 %! assert (sol.x, (0:10) * 0.1, 1e-14);
 %! assert (sol.solver, "odeSV");
 %! assert (sol.stats.nsteps, 10);
+
+%!test
+%! ## reversible steps (the second example): over 20 periods of Kepler's
+%! ## problem at e = 0.9, the energy error of the last periods is no larger
+%! ## than that of the first, the angular momentum is kept, and the steps
+%! ## near the pericentre are the shortest
+%! e = 0.9;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! opts = symplecticset ("StepControl", "reversible", "RelTol", 1e-5,
+%!                       "SecondOrder", "on", "Refine", 1);
+%! [t, y] = odeSV (@(t, q) -q / norm (q)^3, [0 40*pi], y0, opts);
+%! H = sum (y(:,3:4).^2, 2)/2 - 1 ./ sqrt (sum (y(:,1:2).^2, 2));
+%! L = y(:,1).*y(:,4) - y(:,2).*y(:,3);
+%! dH = abs (H - H(1));
+%! assert (max (dH(t >= 36*pi)) <= 1.5 * max (dH(t <= 4*pi)));
+%! assert (max (dH) < 1e-3);
+%! assert (max (abs (L - L(1))) < 1e-12);
+%! h = diff (t);  r = sqrt (sum (y(1:end-1,1:2).^2, 2));
+%! assert (max (h(r < 0.2)) < min (h(r > 1.8)) / 10);
 
 %!test
 %! ## events with a direction; extra parameters reach fcn and Events

@@ -100,9 +100,13 @@
    follow it; the trial steps that find the first density; and the least
    rho_{n+1/2} as a fraction of rho(y_n), which keeps a density that
    falls by more than that within a step positive (not reversible there) */
-#define SYM_REV_EPS_MAX 0.1
+#define SYM_REV_EPS_MAX 0.05
 #define SYM_REV_START 2
 #define SYM_REV_FLOOR 0.25
+/* a remainder of the span below this fraction of a reversible step
+   joins it: a run back from a step point sums the same steps in another
+   order, and misses t0 by their round-off */
+#define SYM_REV_JOIN 1e-6
 /* The least step is 16 ulps of t: t + h then moves by more than t's
    round-off; and 4 ulps of the span: a run creeping towards a
    singularity stops, and a step that fails at every size fails about 52

@@ -222,7 +222,8 @@ schedule (sym_run *r, double *hs, double *tnew, int *last)
       /* a remainder below the least step, or round-off of the span, joins
          this step */
       if (r->h >= rem
-          || rem - r->h <= fmax (SYM_SPAN_SLIVER * rem, hmin_at (r, r->tend)))
+          || rem - r->h <= fmax (SYM_SPAN_SLIVER * rem, hmin_at (r, r->tend))
+          || (r->reversible && rem - r->h <= SYM_REV_JOIN * r->h))
         {
           r->h = rem;
           *last = 1;
