@@ -11,7 +11,8 @@
 ## source, Vectorized, Separable, backwards, Stats; bad inputs (errors
 ## raised in the MEX layer), errors thrown by the user's functions in the
 ## middle of a run, NaN from FCN, Newton and MaxSteps failures (warnings
-## with partial results), SecondOrder, odeSV's methods, JPattern.
+## with partial results), SecondOrder, odeSV's methods, JPattern,
+## reversible steps.
 ## Returns 0 if all results were as expected, 1 otherwise (valgrind's own
 ## findings are judged by check_memory.sh).
 ## Not a test_*.m file: the test runner does not run it.
@@ -182,10 +183,27 @@ function status = memcheck_run ()
     nbad += check (numel (sol.x) == 11 && sol.stats.nfdevals > 0, "odeSPVI", "JPattern");
   endfor
   nbad += expect_error (@odeSV, "Octave:invalid-input-arg", kep, [0 1], y0k, struct ("JPattern", eye (2)));
+  ## reversible steps: the default density (f at the step points, kept by
+  ## the steppers), a user's density, its failure, trial steps and events
+  rev = struct ("StepControl", "reversible", "Events", @(t, y) deal (y(2) - 0.5, 0, 0));
+  sol = odeSV (acc, [0 1], y0k, setfield (rev, "SecondOrder", "on"));
+  nbad += check (sol.x(end) == 1 && numel (sol.xe) == 1, "odeSV", "reversible");
+  [t, y] = odeSV (kep, [0 1], y0k, setfield (rev, "Method", "yoshida4"));
+  nbad += check (t(end) == 1, "yoshida4", "reversible implicit");
+  sol = odeSPVI (kep, [0 1], y0k, setfield (rev, "StepDensityFcn", @(t, y) norm (y(1:2))^-1.5));
+  nbad += check (sol.x(end) == 1, "odeSPVI", "reversible");
+  [t, y] = evalc_run (@odeSV, kep, y0k, setfield (rev, "StepDensityFcn", @(t, y) 10 - 20 * (t > 0.5)));
+  nbad += check (t(end) < 1, "odeSV", "reversible, a density that vanishes");
+  nbad += expect_error (@odeSE, "Octave:invalid-input-arg", kep, [0 1], y0k, rev);
 
   printf ("memcheck_run: %d unexpected results\n", nbad);
   status = double (nbad > 0);
 
+endfunction
+
+function [t, y] = evalc_run (s, f, y0, o)
+  t = y = [];
+  evalc ("[t, y] = s (f, [0 1], y0, o);");
 endfunction
 
 function bad = check (ok, name, what)
