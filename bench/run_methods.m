@@ -139,14 +139,6 @@ function [c, how] = calls_at (x, err, target)
   endif
 endfunction
 
-function s = met_ (b)
-  if (b)
-    s = "met";
-  else
-    s = "not met";
-  endif
-endfunction
-
 function s = fmt_e (x)
   if (isfinite (x))
     s = sprintf ("%.1e", x);
@@ -576,7 +568,7 @@ t_total = toc (t_all);
 [~, kern] = system ("uname -srm");
 hdr = sprintf ("Octave %s, %s, %s, %d cores", version (), strtrim (cpu), ...
                strtrim (kern), nproc ());
-yes = @(b) met_ (b);
+yes = @(b) met_text (b);
 key = {"| # | measure | result | target | |", "|---|---|---|---|---|"};
 key{end+1} = sprintf ("| a1 | Kepler, calls of fcn at an end-point error of 1e-8: best explicit method (Separable) / Verlet (Separable); in the SecondOrder form (one call per stage): best / Verlet | %s %.3g / %.3g (%s) = %.2g; SecondOrder: %s %.3g / %.3g (%s) | <= 1/5 | %s |", ...
                       bestm, cbest, KC8.verlet{1}, KC8.verlet{2}, ratio_verlet, so_m, so_c, ...

@@ -196,14 +196,6 @@ function s = fmt_e (x)
   endif
 endfunction
 
-function s = met_ (b)
-  if (b)
-    s = "met";
-  else
-    s = "not met";
-  endif
-endfunction
-
 function calls = short_calls (solver, fcn, y0, opts, Ps, P)
   ## calls of a run over Ps periods, scaled to P periods
   s = solver (fcn, [0 Ps*2*pi], y0, opts);
@@ -353,15 +345,15 @@ for ic = 1:numel (C)
   lab = C(ic).label;
   fr = rb.dH / ra.dH;  sr = rc.dH / ra.dH;
   key{end+1} = sprintf ("| %s | reversible: largest energy error in the last tenth / in the first tenth | %.2e / %.2e = %.3g | <= 1.5 | %s |", ...
-                        lab, ra.last, ra.first, ra.ratio, met_ (ra.ratio <= 1.5));
+                        lab, ra.last, ra.first, ra.ratio, met_text (ra.ratio <= 1.5));
   key{end+1} = sprintf ("| %s | reversible: angular momentum, largest relative error | %.1e | round-off | %s |", ...
-                        lab, ra.dL, met_ (ra.dL < 1e-11));
+                        lab, ra.dL, met_text (ra.dL < 1e-11));
   key{end+1} = sprintf ("| %s | energy error, fixed steps / reversible, at calls %d / %d = %.3f | %s / %s = %.3g | >= 10 | %s |", ...
                         lab, rb.calls, ra.calls, rb.calls / ra.calls, fmt_e (rb.dH), fmt_e (ra.dH), ...
-                        fr, met_ (fr >= 10));
+                        fr, met_text (fr >= 10));
   key{end+1} = sprintf ("| %s | energy error, standard adaptive / reversible, at calls %d / %d = %.3f | %s / %s = %.3g | >= 10 | %s |", ...
                         lab, rc.calls, ra.calls, rc.calls / ra.calls, fmt_e (rc.dH), fmt_e (ra.dH), ...
-                        sr, met_ (sr >= 10));
+                        sr, met_text (sr >= 10));
   key{end+1} = sprintf ("| %s | standard adaptive: last tenth / first tenth (its drift) | %s / %s = %.3g | | |", ...
                         lab, fmt_e (rc.last), fmt_e (rc.first), rc.ratio);
   if (rd.reached)
@@ -372,15 +364,15 @@ for ic = 1:numel (C)
   for re = R{ic}(5:end)
     fr = rb.dH / re.dH;  sr = rc.dH / re.dH;
     key{end+1} = sprintf ("| %s | %s: last tenth / first tenth | %.2e / %.2e = %.3g | <= 1.5 | %s |", ...
-                          lab, re.mode, re.last, re.first, re.ratio, met_ (re.ratio <= 1.5));
+                          lab, re.mode, re.last, re.first, re.ratio, met_text (re.ratio <= 1.5));
     key{end+1} = sprintf ("| %s | %s: angular momentum, largest relative error | %.1e | round-off | %s |", ...
-                          lab, re.mode, re.dL, met_ (re.dL < 1e-11));
+                          lab, re.mode, re.dL, met_text (re.dL < 1e-11));
     key{end+1} = sprintf ("| %s | energy error, fixed steps / %s, at calls %d / %d = %.3f | %s / %s = %.3g | >= 10 | %s |", ...
                           lab, re.mode, rb.calls, re.calls, rb.calls / re.calls, fmt_e (rb.dH), ...
-                          fmt_e (re.dH), fr, met_ (fr >= 10));
+                          fmt_e (re.dH), fr, met_text (fr >= 10));
     key{end+1} = sprintf ("| %s | energy error, standard adaptive / %s, at calls %d / %d = %.3f | %s / %s = %.3g | >= 10 | %s |", ...
                           lab, re.mode, rc.calls, re.calls, rc.calls / re.calls, fmt_e (rc.dH), ...
-                          fmt_e (re.dH), sr, met_ (sr >= 10));
+                          fmt_e (re.dH), sr, met_text (sr >= 10));
   endfor
   key{end+1} = sprintf ("| %s | ode45 over %g periods, at %.3f times the reversible run's calls per period (per period reached): energy error / the reversible run's (over its %g periods) | %s / %s = %.3g; %s | shown | |", ...
                         lab, rd.periods, (rd.calls / rd.preached) / (ra.calls / ra.periods), ...

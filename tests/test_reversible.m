@@ -108,6 +108,23 @@
 %!  endif
 %!endfunction
 
+%!function check_mirror (r, nmin, misstol, e, gain)
+%!  ## the checks of a reversal r (see reversal): the rerun to tm took the
+%!  ## same steps, the backward run ended on 0 after as many steps, mirrored
+%!  ## to round-off, back on y0 within misstol, at least nmin steps, and the
+%!  ## forward run's own error at tm (against Kepler's equation at
+%!  ## eccentricity e) above gain times the miss
+%!  assert (r.same);
+%!  assert (r.tend, 0);
+%!  assert (r.nsteps(2), r.nsteps(1));
+%!  assert (r.nsteps(1) > nmin);
+%!  assert (r.dstep <= 3e-10, "steps: %g", r.dstep);
+%!  assert (r.dt <= 1e-10, "times: %g", r.dt);
+%!  assert (r.miss <= misstol, "miss: %g", r.miss);
+%!  err = norm (r.ym - kepler_exact (r.tm, e).', Inf);
+%!  assert (err > gain * r.miss, "forward error %g, miss %g", err, r.miss);
+%!endfunction
+
 %!function d = max_dH_tenths (t, y)
 %!  ## max |H - H0| of Kepler's problem over the first and the last tenth
 %!  ## of [t(1), t(end)]
@@ -130,56 +147,24 @@
 %! ## while the forward run is many orders of magnitude less accurate (so
 %! ## the return is not the solution's accuracy)
 %! r = reversal (@odeSV, @kep_acc, 3*P, y0, symplecticset (orev, "SecondOrder", "on"));
-%! assert (r.same);
-%! assert (r.tend, 0);
-%! assert (r.nsteps(2), r.nsteps(1));
-%! assert (r.nsteps(1) > 100);
-%! assert (r.dstep <= 3e-10, "steps: %g", r.dstep);
-%! assert (r.dt <= 1e-10, "times: %g", r.dt);
-%! assert (r.miss <= 1e-8, "miss: %g", r.miss);
-%! err = norm (r.ym - kepler_exact (r.tm, e).', Inf);
-%! assert (err > 1e4 * r.miss, "forward error %g, miss %g", err, r.miss);
+%! check_mirror (r, 100, 1e-8, e, 1e4);
 
 %!test
 %! ## odeSV, first-order form, Separable on (explicit leapfrog)
 %! r = reversal (@odeSV, @kep, 3*P, y0, symplecticset (orev, "Separable", "on"));
-%! assert (r.same);
-%! assert (r.tend, 0);
-%! assert (r.nsteps(2), r.nsteps(1));
-%! assert (r.nsteps(1) > 100);
-%! assert (r.dstep <= 3e-10, "steps: %g", r.dstep);
-%! assert (r.dt <= 1e-10, "times: %g", r.dt);
-%! assert (r.miss <= 1e-8, "miss: %g", r.miss);
-%! err = norm (r.ym - kepler_exact (r.tm, e).', Inf);
-%! assert (err > 1e4 * r.miss, "forward error %g, miss %g", err, r.miss);
+%! check_mirror (r, 100, 1e-8, e, 1e4);
 
 %!test
 %! ## odeSV, Method yoshida4 (a symmetric composition), SecondOrder
 %! r = reversal (@odeSV, @kep_acc, 3*P, y0, ...
 %!               symplecticset (orev, "SecondOrder", "on", "Method", "yoshida4"));
-%! assert (r.same);
-%! assert (r.tend, 0);
-%! assert (r.nsteps(2), r.nsteps(1));
-%! assert (r.nsteps(1) > 30);
-%! assert (r.dstep <= 3e-10, "steps: %g", r.dstep);
-%! assert (r.dt <= 1e-10, "times: %g", r.dt);
-%! assert (r.miss <= 3e-9, "miss: %g", r.miss);
-%! err = norm (r.ym - kepler_exact (r.tm, e).', Inf);
-%! assert (err > 1e3 * r.miss, "forward error %g, miss %g", err, r.miss);
+%! check_mirror (r, 30, 3e-9, e, 1e3);
 
 %!test
 %! ## odeSPVI (Q_DoFs 4, Nodes 3: order 6, implicit steps by Newton)
 %! r = reversal (@odeSPVI, @kep, 3*P, y0, ...
 %!               symplecticset (orev, "Q_DoFs", 4, "Nodes", 3, "Vectorized", "off"));
-%! assert (r.same);
-%! assert (r.tend, 0);
-%! assert (r.nsteps(2), r.nsteps(1));
-%! assert (r.nsteps(1) > 10);
-%! assert (r.dstep <= 3e-10, "steps: %g", r.dstep);
-%! assert (r.dt <= 1e-10, "times: %g", r.dt);
-%! assert (r.miss <= 5e-9, "miss: %g", r.miss);
-%! err = norm (r.ym - kepler_exact (r.tm, e).', Inf);
-%! assert (err > 1e3 * r.miss, "forward error %g, miss %g", err, r.miss);
+%! check_mirror (r, 10, 5e-9, e, 1e3);
 
 %!test
 %! ## the other symmetric methods are taken and reversible too: a splitting
