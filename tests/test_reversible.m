@@ -167,6 +167,17 @@
 %! check_mirror (r, 10, 5e-9, e, 1e3);
 
 %!test
+%! ## odeSPVI's other pairs (n, m) are symmetric too: orders 4, 4 and 8
+%! for pr = [3 2; 3 3; 5 4].'
+%!   o = symplecticset (orev, "Q_DoFs", pr(1), "Nodes", pr(2), "RelTol", 1e-8);
+%!   r = reversal (@odeSPVI, @kep, 2*P, y0, o);
+%!   assert (r.same);
+%!   assert (r.nsteps(2) == r.nsteps(1), "(%d, %d): %d steps forward, %d back",
+%!           pr, r.nsteps);
+%!   assert (r.miss <= 1e-8, "(%d, %d): miss %g", pr, r.miss);
+%! endfor
+
+%!test
 %! ## the other symmetric methods are taken and reversible too: a splitting
 %! ## (candyrozmus4, first-order form), a Nystrom splitting (blanesmoan6)
 %! ## and a composition of order 6 (kahanli6), SecondOrder

@@ -431,7 +431,7 @@ symmex_cb_events (double t, const double *y, double *value, int *isterminal,
   return 0;
 }
 
-
+/* StepDensityFcn (t, y, par1, ...): a real scalar */
 int
 symmex_cb_density (double t, const double *y, double *rho, void *user)
 {

@@ -552,7 +552,8 @@ check_names (const char *solver, const mxArray *opts)
 }
 
 /* The options of adaptive steps given with fixed ones: said, as they do
-   nothing there */
+   nothing there; StepControl "reversible" with them is an error, and
+   StepDensityFcn without it is said */
 static void
 check_fixed (const char *solver, const mxArray *opts, const symmex_opts *o)
 {
