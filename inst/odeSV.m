@@ -246,6 +246,27 @@ endfunction
 %! legend ("odeSV, h = 2\\pi/200", "ode45, RelTol = 1e-4", "location", "southeast");
 %! title ("Kepler, e = 0.3: energy error");
 
+%!demo
+%! ## Kepler's problem at eccentricity 0.9 over 200 periods: reversible
+%! ## steps keep the energy error bounded; standard adaptive steps with
+%! ## about as many steps let it drift.
+%! acc = @(t, q) -q / norm (q)^3;
+%! H = @(y) sum (y(:,3:4).^2, 2)/2 - 1 ./ sqrt (sum (y(:,1:2).^2, 2));
+%! e = 0.9;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];  tf = 400*pi;
+%! o = symplecticset ("SecondOrder", "on", "Refine", 1);
+%! [t1, y1] = odeSV (acc, [0 tf], y0, symplecticset (o, "StepControl",
+%!                   "reversible", "RelTol", 1e-4));
+%! [t2, y2] = odeSV (acc, [0 tf], y0, symplecticset (o, "RelTol", 1e-6,
+%!                   "AbsTol", 1e-6));
+%! figure ();
+%! semilogy (t1 / (2*pi), max (abs (H (y1) + 0.5), eps), "b",
+%!           t2 / (2*pi), max (abs (H (y2) + 0.5), eps), "r");
+%! xlabel ("periods");  ylabel ("|H(t) - H(0)|");
+%! legend (sprintf ("reversible, %d steps", numel (t1) - 1),
+%!         sprintf ("standard, %d steps", numel (t2) - 1),
+%!         "location", "southeast");
+%! title ("Kepler, e = 0.9: energy error");
+
 ## Representative tests (the full ode45-contract tests are in
 ## tests/test_ode45_contract.m).
 %!test
