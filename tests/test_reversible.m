@@ -125,6 +125,13 @@
 %!  assert (err > gain * r.miss, "forward error %g, miss %g", err, r.miss);
 %!endfunction
 
+%!function [msg, sol] = evalc_warn (run)
+%!  ## sol = run () with its warnings caught, and the last one's text
+%!  sol = [];  lastwarn ("");
+%!  evalc ("sol = run ();");
+%!  msg = lastwarn ();
+%!endfunction
+
 %!function d = max_dH_tenths (t, y)
 %!  ## max |H - H0| of Kepler's problem over the first and the last tenth
 %!  ## of [t(1), t(end)]
@@ -455,3 +462,12 @@
 %! assert (! isempty (regexp (lastwarn (), "^odeSPVI: .*StepDensityFcn")), lastwarn ());
 %! assert (t(end) < 2 && t(end) > 0.5);
 %! assert (all (isfinite (y(:))));
+
+%!test
+%! ## a NaN of fcn ends a reversible run (no step is shortened) with the
+%! ## rows so far and a warning that says so
+%! f = @(t, y) merge (t > 1, NaN (4, 1), [y(3:4); -y(1:2) / norm(y(1:2))^3]);
+%! o = symplecticset ("StepControl", "reversible", "Separable", "on");
+%! [msg, sol] = evalc_warn (@() odeSV (f, [0 3], [0.5; 0; 0; 1.7], o));
+%! assert (sol.x(end) > 0.5 && sol.x(end) < 1.1);
+%! assert (! isempty (regexp (msg, "odeSV: FCN returned NaN or Inf .* reversible step", "once")));

@@ -93,6 +93,9 @@ warn_newton (const symmex_method *m, const void *own, const symmex_opts *o,
                       symmex_fixed (o)
                       ? (hint ? "with the fixed step"
                          : "with the fixed step (try a smaller TimeStepSize)")
+                      : o->reversible
+                      ? (hint ? "with the reversible step"
+                         : "with the reversible step (try a smaller RelTol)")
                       : "even with the smallest step", why, tlast);
 }
 
@@ -130,8 +133,9 @@ symmex_report (const symmex_method *m, const void *own,
                           "to t = %.15g", name, c->nonfinite_what
                           ? c->nonfinite_what : "FCN", st->fail_t,
                           symmex_fixed (o) ? "with the fixed step (try a "
-                          "smaller TimeStepSize)" : "and a smaller step did "
-                          "not help", tlast);
+                          "smaller TimeStepSize)" : o->reversible ? "with the "
+                          "reversible step (try a smaller RelTol)" : "and a "
+                          "smaller step did not help", tlast);
       break;
     case SYM_EOVERFLOW:
       mexWarnMsgIdAndTxt ("symplectic:nonfinite", "%s: the solution "
@@ -139,7 +143,8 @@ symmex_report (const symmex_method *m, const void *own,
                           "t = %.15g%s; returning the solution up to "
                           "t = %.15g", name, treached, symmex_fixed (o)
                           ? " (an unstable fixed step? try a smaller "
-                            "TimeStepSize)" : " even with the smallest step",
+                            "TimeStepSize)" : o->reversible ? " (try a "
+                            "smaller RelTol)" : " even with the smallest step",
                           tlast);
       break;
     case SYM_ESTEPSIZE:
