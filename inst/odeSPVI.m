@@ -43,8 +43,11 @@
 ## density by a time-symmetric recurrence, which keeps the energy error
 ## bounded like a fixed step while the steps crowd where the motion is
 ## fast (@code{help odeSV} says how; here eps = RelTol^(1/order), at most
-## 0.05, and the default density costs one call of @var{fcn} per step).
-## The step being symmetric for every pair (n, m), so is the run.
+## 0.05).  The default density needs f at the step points, a call per
+## step that the dense output (@code{Refine} > 1, output times, events,
+## @code{Dense}) makes anyway and shares; a run without dense output
+## saves it with a @code{StepDensityFcn}.  The step being symmetric for
+## every pair (n, m), so is the run.
 ##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
 ## @code{odeSE}; @var{sol} has the fields of @code{ode45} and also order

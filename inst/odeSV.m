@@ -69,7 +69,9 @@
 ## with a fixed step.  rho(t, y) is @code{StepDensityFcn} (steps per unit
 ## time; for Kepler's problem @code{@@(t, y) norm (y(1:2))^-1.5}), by
 ## default |f(t,y)| / sqrt(|y|^2 + |AbsTol|^2), which needs f at the step
-## points: no extra call with @code{SecondOrder}, one per step otherwise.
+## points: with @code{SecondOrder} the step has it; otherwise it is the
+## call per step that the dense output (@code{Refine} > 1, output times,
+## events) and standard steps' error estimate make as well.
 ## eps = RelTol^(1/p) for a method of order p, at most 0.05 (beyond it
 ## the density changes too much within a step).  @code{InitialStep} is the
 ## first step exactly; without it two trial steps find it.  There is no

@@ -471,3 +471,19 @@
 %! [msg, sol] = evalc_warn (@() odeSV (f, [0 3], [0.5; 0; 0; 1.7], o));
 %! assert (sol.x(end) > 0.5 && sol.x(end) < 1.1);
 %! assert (! isempty (regexp (msg, "odeSV: FCN returned NaN or Inf .* reversible step", "once")));
+
+%!test
+%! ## the default density's f at the step points is the f that odeSPVI's
+%! ## dense output evaluates: with the dense output (Dense) a reversible
+%! ## run makes no more calls than without, but at its first and last
+%! ## points, where a standard run makes one more per step
+%! calls = @(s) s.stats.nfevals + s.stats.nfdevals;
+%! o = symplecticset ("Q_DoFs", 4, "Nodes", 3, "RelTol", 1e-8);
+%! or = symplecticset (o, "StepControl", "reversible");
+%! s1 = odeSPVI (@kep, [0 2*P], y0, or);
+%! s4 = odeSPVI (@kep, [0 2*P], y0, symplecticset (or, "Dense", "on"));
+%! assert (s4.x, s1.x);
+%! assert (calls (s4) - calls (s1) <= 2);
+%! d1 = odeSPVI (@kep, [0 2*P], y0, o);
+%! d4 = odeSPVI (@kep, [0 2*P], y0, symplecticset (o, "Dense", "on"));
+%! assert (calls (d4) - calls (d1) >= 0.9 * d1.stats.nsteps);
