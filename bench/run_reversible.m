@@ -20,9 +20,12 @@
 ## AbsTol) likewise to the same calls per period, over 100 periods (it
 ## is an m-file: over all periods it would take minutes).  odeSPVI also
 ## runs reversible with Kepler's density |q|^(-3/2) as StepDensityFcn
-## (the default density costs odeSPVI a call of fcn per step).  Energy
-## and angular momentum at the step points of each run (the sol output,
-## Refine 1).  About 6 minutes on 2 cores.
+## (the default density costs odeSPVI a call of fcn per step), and both
+## its adaptive modes again with dense output (Dense "on"), whose f at
+## each step's end the reversible density reuses while standard steps
+## pay for it, the standard RelTol tuned anew to the reversible Dense-on
+## run's calls.  Energy and angular momentum at the step points of each
+## run (the sol output, Refine 1).  About 8 minutes on 2 cores.
 ##
 ## Writes bench/REVERSIBLE.md and bench/reversible-kepler.png.  Run from
 ## the top directory:
@@ -143,14 +146,18 @@ function [tol, b] = fit_tol (callsfun, target, tols0, nmore)
   endfor
 endfunction
 
-function [best, how] = tune_full (runfun, target, tol, b, maxruns, label)
-  ## full runs r = runfun (tol) until r.calls is within 15% of target, at
-  ## most maxruns: the next tolerance from a power law of calls against
+function [best, how, tbest, b] = tune_full (runfun, target, tol, b, maxruns, label, band)
+  ## full runs r = runfun (tol) until r.calls is within band (default
+  ## 0.15, 15%) of target, at most maxruns: the next tolerance from a power law of calls against
   ## tol through the two runs closest to target (the first time with the
   ## slope b of the short runs), a step of at most 10 times in tol, and
   ## inside the bracket of the runs either side of target.  The run
-  ## closest to target is kept.  (Full runs, because a drifting energy
-  ## changes the period and with it the calls per period.)
+  ## closest to target is kept, and its tolerance is tbest; b is the last
+  ## slope.  (Full runs, because a drifting energy changes the period and
+  ## with it the calls per period.)
+  if (nargin < 7)
+    band = 0.15;
+  endif
   X = [];  C = [];  runs = {};
   for k = 1:maxruns
     r = runfun (tol);
@@ -160,7 +167,7 @@ function [best, how] = tune_full (runfun, target, tol, b, maxruns, label)
     X(end+1) = tol;  C(end+1) = cfull;  runs{end+1} = r;
     printf ("    %s tuning, run %d: RelTol = AbsTol = %.3g, %d calls (over %.4g periods; %.3f of the target per period), %.1f s\n", ...
             label, k, tol, r.calls, r.preached, cfull / target, r.time);
-    if (abs (cfull / target - 1) <= 0.15 || k == maxruns)
+    if (abs (cfull / target - 1) <= band || k == maxruns)
       break;
     endif
     [~, i] = sort (abs (log (C / target)));
@@ -182,6 +189,7 @@ function [best, how] = tune_full (runfun, target, tol, b, maxruns, label)
   endfor
   [~, j] = min (abs (log (C / target)));
   best = runs{j};
+  tbest = X(j);
   how = sprintf ("%d full run%s, calls per period %s", numel (X), repmat ("s", 1, numel (X) > 1), ...
                  strjoin (arrayfun (@(c) sprintf ("%.0f", c), C / runs{1}.periods, "uniformoutput", false), ", "));
 endfunction
@@ -215,22 +223,24 @@ T = 2*pi;
 nb = 400;                                # bins of time for the plot
 ## the cases: label, solver, fcn, options of the solver, e, periods,
 ## reversible RelTol, periods of ode45, first tolerances of the standard
-## mode's short runs
+## mode's short runs, a StepDensityFcn to try, whether to compare also
+## with dense output (Dense on)
 C = struct ("label", {}, "solver", {}, "fcn", {}, "opts", {}, "e", {}, ...
-            "P", {}, "rtol", {}, "P45", {}, "tols0", {}, "rho", {});
+            "P", {}, "rtol", {}, "P45", {}, "tols0", {}, "rho", {}, "dense", {});
 osv = symplecticset ("SecondOrder", "on", "Refine", 1);
 ospvi = symplecticset ("Q_DoFs", 4, "Nodes", 3, "Vectorized", "on", "Refine", 1);
 C(end+1) = struct ("label", "odeSV, e = 0.9", "solver", @odeSV, "fcn", @kacc, ...
                    "opts", osv, "e", 0.9, "P", 1e4, "rtol", 1e-3, "P45", 1e2, ...
-                   "tols0", [1e-5 1e-7], "rho", []);
+                   "tols0", [1e-5 1e-7], "rho", [], "dense", false);
 C(end+1) = struct ("label", "odeSV, e = 0.99", "solver", @odeSV, "fcn", @kacc, ...
                    "opts", osv, "e", 0.99, "P", 1e3, "rtol", 1e-4, "P45", 1e2, ...
-                   "tols0", [1e-5 1e-7], "rho", []);
+                   "tols0", [1e-5 1e-7], "rho", [], "dense", false);
 C(end+1) = struct ("label", "odeSPVI (4,3), e = 0.9", "solver", @odeSPVI, "fcn", @kep_v, ...
                    "opts", ospvi, "e", 0.9, "P", 1e4, "rtol", 1e-8, "P45", 1e2, ...
-                   "tols0", [1e-8 1e-10], "rho", @kep_rho);
+                   "tols0", [1e-8 1e-10], "rho", @kep_rho, "dense", true);
 
 R = cell (1, numel (C));                 # runs of each case
+D = cell (1, numel (C));                 # its runs with dense output
 K = cell (1, numel (C));                 # how each run's setting was found
 E = cell (1, numel (C));                 # bin edges of each case's plot
 tcase = zeros (1, numel (C));
@@ -276,7 +286,7 @@ for ic = 1:numel (C)
   [tol, b] = fit_tol (cf, target, c.tols0, 2);
   rf = @(tol) run_sym (c.solver, c.fcn, tf, y0, symplecticset (c.opts, "RelTol", tol, "AbsTol", tol), ...
                        "standard adaptive", sprintf ("RelTol = AbsTol = %.3g", tol), edges);
-  [rc, how] = tune_full (rf, target, tol, b, 5, "standard");
+  [rc, how, tolc, bc] = tune_full (rf, target, tol, b, 5, "standard");
   printf ("  standard %s (%s): %d calls (%.3f of reversible), %d steps, %d failed; dH %.2e (first %.2e, last %.2e)\n", ...
           rc.setting, how, rc.calls, rc.calls / target, rc.steps, rc.failed, rc.dH, rc.first, rc.last);
   K{ic}.standard = how;
@@ -304,6 +314,38 @@ for ic = 1:numel (C)
             re.calls, re.steps, re.time, re.dH, re.first, re.last, re.dL);
     R{ic}(end+1) = re;
   endif
+
+  ## (f) where asked, both adaptive modes with dense output (Dense on, still
+  ## Refine 1: the errors at the step points, as above).  The dense output
+  ## evaluates f at each step's end, in both modes; the reversible
+  ## density takes it from there, standard steps pay it on top.  The
+  ## reversible run at the same RelTol; the standard run's RelTol (=
+  ## AbsTol) from the one above: its calls plus one a step, a power law
+  ## with the slope of its tuning to the reversible Dense-on run's calls,
+  ## then full runs (at most 3, within 10%).
+  if (c.dense)
+    od = symplecticset (c.opts, "StepControl", "reversible", "RelTol", c.rtol, "Dense", "on");
+    rad = run_sym (c.solver, c.fcn, tf, y0, od, "reversible, Dense on", ...
+                   sprintf ("RelTol = %.3g", c.rtol), edges);
+    printf ("  reversible, Dense on: %d calls (%.3f a step; %.3f without dense output), %d steps, %.1f s; dH %.2e (first tenth %.2e, last %.2e), dL %.1e\n", ...
+            rad.calls, rad.calls / rad.steps, ra.calls / ra.steps, rad.steps, rad.time, ...
+            rad.dH, rad.first, rad.last, rad.dL);
+    targetd = rad.calls;
+    guess = rc.calls + rc.steps;         # rc's calls with dense output
+    told = tolc * (targetd / guess)^(1 / bc);
+    printf ("  standard, Dense on: from RelTol %.3g (%d calls + %d steps = %d) and slope %.3f, a first RelTol %.3g\n", ...
+            tolc, rc.calls, rc.steps, guess, bc, told);
+    rfd = @(tol) run_sym (c.solver, c.fcn, tf, y0, ...
+                          symplecticset (c.opts, "RelTol", tol, "AbsTol", tol, "Dense", "on"), ...
+                          "standard adaptive, Dense on", sprintf ("RelTol = AbsTol = %.3g", tol), edges);
+    [rcd, howd] = tune_full (rfd, targetd, told, bc, 3, "standard, Dense on", 0.10);
+    printf ("  standard, Dense on, %s (%s): %d calls (%.3f of reversible Dense on; %.3f a step), %d steps, %d failed; dH %.2e (first %.2e, last %.2e)\n", ...
+            rcd.setting, howd, rcd.calls, rcd.calls / targetd, rcd.calls / rcd.steps, rcd.steps, ...
+            rcd.failed, rcd.dH, rcd.first, rcd.last);
+    K{ic}.dense = sprintf ("from RelTol = AbsTol = %.3g above: %d + %d calls, a RelTol %.3g by the slope %.3f; %s", ...
+                           tolc, rc.calls, rc.steps, told, bc, howd);
+    D{ic} = [rad, rcd];
+  endif
   tcase(ic) = toc (t_case);
   printf ("  case %d: %.0f s (%.0f s in all)\n", ic, tcase(ic), toc (t_all));
 endfor
@@ -316,6 +358,13 @@ for ic = 1:numel (C)
   for r = R{ic}
     ok = isfinite (r.env);
     loglog (r.tb(ok) / T, r.env(ok), "linewidth", 1.2, "displayname", ...
+            sprintf ("%s, %.0f calls/period", r.mode, r.calls / r.preached));
+  endfor
+  ## the runs with dense output, dashed (the reversible one lies on the
+  ## reversible run without it: the same steps)
+  for r = D{ic}
+    ok = isfinite (r.env);
+    loglog (r.tb(ok) / T, r.env(ok), "--", "linewidth", 1.5, "displayname", ...
             sprintf ("%s, %.0f calls/period", r.mode, r.calls / r.preached));
   endfor
   set (gca, "xscale", "log", "yscale", "log");
@@ -374,6 +423,23 @@ for ic = 1:numel (C)
                           lab, re.mode, rc.calls, re.calls, rc.calls / re.calls, fmt_e (rc.dH), ...
                           fmt_e (re.dH), sr, met_text (sr >= 10));
   endfor
+  if (! isempty (D{ic}))
+    rad = D{ic}(1);  rcd = D{ic}(2);
+    sr = rcd.dH / rad.dH;
+    dlab = "with dense output (Dense on): the step ends' f that the dense output evaluates also serves the density";
+    key{end+1} = sprintf ("| %s | **%s** (calls per step: reversible %.3f, standard %.3f; without dense output %.3f and %.3f) | | | |", ...
+                          lab, dlab, rad.calls / rad.steps, rcd.calls / rcd.steps, ...
+                          ra.calls / ra.steps, rc.calls / rc.steps);
+    key{end+1} = sprintf ("| %s | Dense on: reversible: last tenth / first tenth | %.2e / %.2e = %.3g | <= 1.5 | %s |", ...
+                          lab, rad.last, rad.first, rad.ratio, met_text (rad.ratio <= 1.5));
+    key{end+1} = sprintf ("| %s | Dense on: reversible: angular momentum, largest relative error | %.1e | round-off | %s |", ...
+                          lab, rad.dL, met_text (rad.dL < 1e-11));
+    key{end+1} = sprintf ("| %s | Dense on: energy error, standard adaptive / reversible, both Dense on, at calls %d / %d = %.3f | %s / %s = %.3g | >= 10 | %s |", ...
+                          lab, rcd.calls, rad.calls, rcd.calls / rad.calls, fmt_e (rcd.dH), ...
+                          fmt_e (rad.dH), sr, met_text (sr >= 10));
+    key{end+1} = sprintf ("| %s | Dense on: standard adaptive: last tenth / first tenth (its drift) | %s / %s = %.3g | | |", ...
+                          lab, fmt_e (rcd.last), fmt_e (rcd.first), rcd.ratio);
+  endif
   key{end+1} = sprintf ("| %s | ode45 over %g periods, at %.3f times the reversible run's calls per period (per period reached): energy error / the reversible run's (over its %g periods) | %s / %s = %.3g; %s | shown | |", ...
                         lab, rd.periods, (rd.calls / rd.preached) / (ra.calls / ra.periods), ...
                         ra.periods, fmt_e (rd.dH), fmt_e (ra.dH), rd.dH / ra.dH, stop45);
@@ -382,7 +448,7 @@ endfor
 tab = {"| case | mode | setting | periods | calls of fcn | calls per period (reached) | steps | failed | f evaluations | order | max energy error | first tenth | last tenth | last / first | angular momentum (rel.) | time (s) |", ...
        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"};
 for ic = 1:numel (C)
-  for r = R{ic}
+  for r = [R{ic}, D{ic}]
     per = sprintf ("%g", r.periods);
     if (! r.reached)
       per = sprintf ("%g (ended at t = %.4g)", r.periods, r.tend);
@@ -413,13 +479,22 @@ fprintf (fid, "# Reversible step-size control on long Kepler runs\n\n");
 fprintf (fid, "Written by bench/run_reversible.m on %s in %.0f s (the cases %s s).\n\n%s\n\n", ...
          datestr (now, "yyyy-mm-dd"), t_total, strjoin (arrayfun (@(x) sprintf ("%.0f", x), tcase, "uniformoutput", false), ", "), hdr);
 fprintf (fid, "Re-run from the top directory (after make):\n\n    octave-cli --norc --no-gui --path \"$PWD/inst:$PWD/src:$PWD/bench\" bench/run_reversible.m\n\n");
-fprintf (fid, "Kepler's problem (a = 1, period 2 pi) from the pericentre: q0 = [1-e; 0], v0 = [0; sqrt((1+e)/(1-e))], H = |v|^2/2 - 1/|q|, L = q1 v2 - q2 v1.  Three cases: odeSV (Verlet) with SecondOrder \"on\" (fcn = -q/|q|^3, one call per step), e = 0.9 over %g periods and e = 0.99 over %g; odeSPVI with Q_DoFs 4, Nodes 3 (order 6), Vectorized \"on\" (fcn = [v; -q/|q|^3] on the columns; Newton's matrices by finite differences, one call each), e = 0.9 over %g periods%s.  Four modes each:\n\n", C(1).P, C(2).P, C(3).P, spvi_note);
+fprintf (fid, "Kepler's problem (a = 1, period 2 pi) from the pericentre: q0 = [1-e; 0], v0 = [0; sqrt((1+e)/(1-e))], H = |v|^2/2 - 1/|q|, L = q1 v2 - q2 v1.  Three cases: odeSV (Verlet) with SecondOrder \"on\" (fcn = -q/|q|^3, one call per step), e = 0.9 over %g periods and e = 0.99 over %g; odeSPVI with Q_DoFs 4, Nodes 3 (order 6), Vectorized \"on\" (fcn = [v; -q/|q|^3] on the columns; Newton's matrices by finite differences, one call each), e = 0.9 over %g periods%s.  The modes:\n\n", C(1).P, C(2).P, C(3).P, spvi_note);
 fprintf (fid, "- reversible: StepControl \"reversible\" at the RelTol in the table, the default step density (no StepDensityFcn), no InitialStep, default MaxStep;\n");
 fprintf (fid, "- fixed steps: TimeStepNumber such that the calls of fcn are those of the reversible run (calls per step measured on a short run at that step, twice, then scaled: %s; %s; %s);\n", K{1}.fixed, K{2}.fixed, K{3}.fixed);
 fprintf (fid, "- standard adaptive (the default StepControl): RelTol = AbsTol tuned to the reversible run's calls, first from short runs (1/100 of the periods, at least 10) and a power law of calls against RelTol, then on full runs (its energy drifts, the orbit's period with it, and so do the calls per period), keeping the run closest to the calls (%s; %s; %s).  odeSPVI's adaptive runs advance with the companion solution of one more mode and node (order 8, `sol.order`);\n", K{1}.standard, K{2}.standard, K{3}.standard);
 fprintf (fid, "- for odeSPVI also reversible with Kepler's step density |q|^(-3/2) as StepDensityFcn, the same RelTol: the default density needs f at each step point, a call of fcn per step that odeSPVI's step makes no other use of (odeSV's SecondOrder step reuses its force), and this shows what the steps do without that call; it is compared with the same fixed-step and standard runs, whose calls the table gives;\n");
+if (any ([C.dense]))
+  id = find ([C.dense]);
+  fprintf (fid, "- for %s also both adaptive modes with dense output (`Dense` \"on\", Refine 1 still, so that the errors are again those at the step points): the reversible run at the same RelTol, the standard run at a RelTol = AbsTol tuned to the reversible Dense-on run's calls (%s).  Two footings, then: without dense output (the rows above) the reversible default density costs a call of fcn per step that standard steps do not make; with dense output both modes evaluate f at each step's end for it, and the reversible density takes its f from there, at no extra call, while standard steps pay that call on top (calls per step, reversible %s without dense output and %s with it, standard %s and %s);\n", ...
+           strjoin ({C(id).label}, ", "), strjoin (cellfun (@(k) k.dense, K(id), "uniformoutput", false), "; "), ...
+           strjoin (arrayfun (@(i) sprintf ("%.3f", R{i}(1).calls / R{i}(1).steps), id, "uniformoutput", false), ", "), ...
+           strjoin (arrayfun (@(i) sprintf ("%.3f", D{i}(1).calls / D{i}(1).steps), id, "uniformoutput", false), ", "), ...
+           strjoin (arrayfun (@(i) sprintf ("%.3f", R{i}(3).calls / R{i}(3).steps), id, "uniformoutput", false), ", "), ...
+           strjoin (arrayfun (@(i) sprintf ("%.3f", D{i}(2).calls / D{i}(2).steps), id, "uniformoutput", false), ", "));
+endif
 fprintf (fid, "- ode45 (Octave's): RelTol = AbsTol tuned the same way to the reversible run's calls per period, over the periods in the table, fewer than the others' (ode45 is an m-file, 6 calls a step; its runs here took %.0f us a call against %.0f us for odeSV's reversible runs, so that over all periods at equal calls its runs would take %s s) (%s; %s; %s).\n\n", us45, ussv, strjoin (arrayfun (@(ic) sprintf ("%.0f", R{ic}(4).time * C(ic).P / C(ic).P45), 1:numel (C), "uniformoutput", false), ", "), K{1}.ode45, K{2}.ode45, K{3}.ode45);
-fprintf (fid, "Calls of fcn: `sol.stats` nfevals + npds + nfdevals; with Vectorized (odeSPVI) these count calls, each of one or a few states, and f evaluations are the states (`sol.stats.nstates`); ode45: its Stats.  Energy and angular momentum at every step point (the sol output, Refine 1); first and last tenth: t <= tf/10 and t >= 0.9 tf.  Everything but the times is machine-independent (up to round-off); times are single runs, wall clock, on a machine that may have been busy.  Plot: reversible-kepler.png, the largest |H - H0| over bins of whole periods (up to %d, log-spaced in time; plotted at each bin's end).\n\n", nb);
+fprintf (fid, "Calls of fcn: `sol.stats` nfevals + npds + nfdevals; with Vectorized (odeSPVI) these count calls, each of one or a few states, and f evaluations are the states (`sol.stats.nstates`); ode45: its Stats.  Energy and angular momentum at every step point (the sol output, Refine 1); first and last tenth: t <= tf/10 and t >= 0.9 tf.  Everything but the times is machine-independent (up to round-off); times are single runs, wall clock, on a machine that may have been busy.  Plot: reversible-kepler.png, the largest |H - H0| over bins of whole periods (up to %d, log-spaced in time; plotted at each bin's end; the runs with dense output dashed).\n\n", nb);
 fprintf (fid, "## The issue's measures\n\n%s\n\n", strjoin (key, "\n"));
 fprintf (fid, "## All runs\n\n%s\n", strjoin (tab, "\n"));
 fclose (fid);
