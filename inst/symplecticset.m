@@ -59,9 +59,10 @@
 ## (@qcode{"verlet"}, @qcode{"yoshida4"}, @dots{}; the table is in
 ## @code{help odeSV}).  Default @qcode{"verlet"}.
 ## @item CompensatedSummation
-## @code{odeSV}: @qcode{"on"} sums the updates of explicit fixed steps
-## with compensation, which keeps the round-off of the energy of very
-## long runs near that of a single step.  Default @qcode{"off"}.
+## @code{odeSV}: @qcode{"on"} sums the updates of explicit (fixed or
+## reversible) steps with compensation, which keeps the round-off of the
+## energy of very long runs near that of a single step.  Default
+## @qcode{"off"}.
 ## @item StepControl
 ## Adaptive steps: @qcode{"standard"} (error estimates, as
 ## @code{ode45}) or @qcode{"reversible"} (a time-symmetric step density

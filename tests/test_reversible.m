@@ -487,3 +487,13 @@
 %! d1 = odeSPVI (@kep, [0 2*P], y0, o);
 %! d4 = odeSPVI (@kep, [0 2*P], y0, symplecticset (o, "Dense", "on"));
 %! assert (calls (d4) - calls (d1) >= 0.9 * d1.stats.nsteps);
+
+%!test
+%! ## CompensatedSummation with reversible steps: the same steps, the sums
+%! ## differing from the plain ones by round-off only
+%! o = symplecticset (orev, "SecondOrder", "on", "RelTol", 1e-5);
+%! [t1, y1] = odeSV (@kep_acc, [0 2*P], y0, o);
+%! [t2, y2] = odeSV (@kep_acc, [0 2*P], y0, symplecticset (o, "CompensatedSummation", "on"));
+%! assert (numel (t2), numel (t1));
+%! assert (t2, t1, 1e-11);
+%! assert (y2, y1, 1e-10);

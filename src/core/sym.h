@@ -310,7 +310,8 @@ typedef struct {
 extern const sym_splitting sym_splittings[];
 /* the index of the method called name (any case), or -1 */
 int sym_splitting_find (const char *name);
-/* the splitting stepper: fixed steps of sym_splittings[own->method];
+/* the splitting stepper: steps of sym_splittings[own->method] without
+   error control (fixed or reversible);
    explicit (separable or second_order) or, for a composition, implicit
    Stoermer-Verlet stages */
 extern const sym_stepper_type *const sym_step_splitting;

@@ -1,7 +1,7 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* splitting.c -- fixed steps of a composition or splitting method of
+/* splitting.c -- steps of a composition or splitting method of
    sym_splittings (splittings.c): a method is a row of coefficients.
 
    Explicit steps (separable H, or second_order: f_q = p).  Every method
@@ -24,7 +24,8 @@
    gamma_i, which keeps its Newton matrices for that step size (one
    state for all would build new ones at every change of the size).
 
-   The step has no error estimate: fixed steps only.  Dense output: the
+   The step has no error estimate: fixed or reversible steps only (the
+   driver asks for no estimate there).  Dense output: the
    cubic Hermite interpolant through the step's ends (onestep.c). */
 #include "onestep.h"
 
@@ -325,7 +326,7 @@ sp_step (void *state, sym_eval *ev, double t, double h, double tend,
 {
   sp_state *s = state;
   int st, cont;
-  /* no error estimate: fixed steps only */
+  /* no error estimate: fixed or reversible steps only */
   if (yerr)
     return SYM_EBADINPUT;
   if ((st = sym_onestep_begin (&s->o, ev, t, h, tend, y, ynext, &cont)))

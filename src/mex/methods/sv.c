@@ -42,8 +42,8 @@ sv_parse (const char *solver, const mxArray *opts, void *own)
 }
 
 /* Stoermer-Verlet's own stepper, with its adaptive steps, unless another
-   method or compensated sums are asked for: those take fixed steps of
-   the splitting stepper */
+   method or compensated sums are asked for: those take the splitting
+   stepper's fixed or reversible steps */
 static const sym_stepper_type *
 sv_stepper (const char *solver, const void *own, const symmex_opts *o)
 {
