@@ -188,6 +188,11 @@ void sym_eval_init (sym_eval *ev, const sym_system *sys);
    zero, the other half's largest, or 1 if both are.  Without ytyp every
    component of a half takes the half's largest size. */
 int sym_rhs (sym_eval *ev, double t, const double *y, double *dy);
+/* sym_rhs into dy unless *have says dy holds f(t, y) already; sets *have
+   on success (a step record's f at its ends, evaluated when first
+   needed) */
+int sym_rhs_once (sym_eval *ev, double t, const double *y, double *dy,
+                  int *have);
 int sym_rhs_many (sym_eval *ev, int k, const double *t, const double *y,
                   double *dy);
 int sym_jac (sym_eval *ev, double t, const double *y, const double *f0,

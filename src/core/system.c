@@ -143,6 +143,18 @@ sym_rhs (sym_eval *ev, double t, const double *y, double *dy)
 }
 
 int
+sym_rhs_once (sym_eval *ev, double t, const double *y, double *dy,
+              int *have)
+{
+  if (*have)
+    return SYM_SUCCESS;
+  int st = sym_rhs (ev, t, y, dy);
+  if (st == SYM_SUCCESS)
+    *have = 1;
+  return st;
+}
+
+int
 sym_rhs_many (sym_eval *ev, int k, const double *t, const double *y,
               double *dy)
 {

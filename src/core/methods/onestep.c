@@ -90,12 +90,7 @@ int
 sym_recs_f0 (sym_recs *r, sym_eval *ev)
 {
   sym_rec *tr = r->trial;
-  if (tr->have_f0)
-    return SYM_SUCCESS;
-  int st = sym_rhs (ev, tr->t, tr->y0, tr->f0);
-  if (st == SYM_SUCCESS)
-    tr->have_f0 = 1;
-  return st;
+  return sym_rhs_once (ev, tr->t, tr->y0, tr->f0, &tr->have_f0);
 }
 
 int
@@ -119,9 +114,8 @@ sym_recs_finish (sym_recs *r, sym_eval *ev, int want_f, double *yerr,
     {
       if ((st = sym_recs_f0 (r, ev)))
         return st;
-      if (! tr->have_f1 && (st = sym_rhs (ev, tr->tend, tr->y1, tr->f1)))
+      if ((st = sym_rhs_once (ev, tr->tend, tr->y1, tr->f1, &tr->have_f1)))
         return st;
-      tr->have_f1 = 1;
     }
   if (yerr)
     for (int i = 0; i < n; i++)
@@ -177,15 +171,10 @@ sym_onestep_end_f (void *state, sym_eval *ev, double *f)
   sym_rec *c = r->cur;
   if (! r->have_cur)
     return SYM_EBADINPUT;
-  if (! c->have_f1)
-    {
-      int st = sym_rhs (ev, c->tend, c->y1, c->f1);
-      if (st)
-        return st;
-      c->have_f1 = 1;
-    }
-  memcpy (f, c->f1, (size_t) r->n * sizeof (double));
-  return SYM_SUCCESS;
+  int st = sym_rhs_once (ev, c->tend, c->y1, c->f1, &c->have_f1);
+  if (st == SYM_SUCCESS)
+    memcpy (f, c->f1, (size_t) r->n * sizeof (double));
+  return st;
 }
 
 void

@@ -56,18 +56,9 @@ rec_ends (spvi_rec *r, sym_eval *ev, int d)
   const size_t nn = 2 * (size_t) d;
   const double hh = 0.5 * r->h;
   int st;
-  if (! r->have_fe0)
-    {
-      if ((st = sym_rhs (ev, r->t, r->y0, r->fe0)))
-        return st;
-      r->have_fe0 = 1;
-    }
-  if (! r->have_fe1)
-    {
-      if ((st = sym_rhs (ev, r->tend, r->y1, r->fe1)))
-        return st;
-      r->have_fe1 = 1;
-    }
+  if ((st = sym_rhs_once (ev, r->t, r->y0, r->fe0, &r->have_fe0))
+      || (st = sym_rhs_once (ev, r->tend, r->y1, r->fe1, &r->have_fe1)))
+    return st;
   for (size_t i = 0; r->M > 0 && i < nn; i++)
     {
       r->D[i] = hh * r->fe0[i];

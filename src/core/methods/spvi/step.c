@@ -442,15 +442,10 @@ spvi_end_f (void *state, sym_eval *ev, double *f)
   const size_t n = 2 * (size_t) s->d;
   if (! s->have_cur)
     return SYM_EBADINPUT;
-  if (! cu->have_fe1)
-    {
-      int st = sym_rhs (ev, cu->tend, cu->y1, cu->fe1);
-      if (st)
-        return st;
-      cu->have_fe1 = 1;
-    }
-  memcpy (f, cu->fe1, n * sizeof (double));
-  return SYM_SUCCESS;
+  int st = sym_rhs_once (ev, cu->tend, cu->y1, cu->fe1, &cu->have_fe1);
+  if (st == SYM_SUCCESS)
+    memcpy (f, cu->fe1, n * sizeof (double));
+  return st;
 }
 
 static const sym_stepper_type spvi_type = {
