@@ -7,16 +7,16 @@
 #   sh tools/install-deps.sh           (make deps)
 #   sh tools/install-deps.sh memory    (make deps-memory)
 #
-# Checks: octave-cli, mkoctfile, a C compiler that links against LAPACK and
-# BLAS; with `memory`, valgrind too (only make check-memory and make
-# valgrind need it).  When all are there it only checks (quick, no
+# Checks: octave-cli, mkoctfile, a C compiler that links against LAPACK,
+# BLAS and KLU (SuiteSparse, for sparse Jacobians); with `memory`,
+# valgrind too (only make check-memory and make valgrind need it).  When all are there it only checks (quick, no
 # network); otherwise it runs apt-get update + apt-get install once for the
 # whole set (as root, or through sudo when not root and sudo exists).
 #
 # Environment: SYM_DEPS_FORCE=1 installs even if everything looks present.
 set -eu
 
-PACKAGES="octave octave-dev liblapack-dev libblas-dev"
+PACKAGES="octave octave-dev liblapack-dev libblas-dev libsuitesparse-dev"
 TOOLS="octave-cli mkoctfile"
 case "${1:-}" in
   "") ;;
@@ -46,6 +46,9 @@ check () {
     printf 'void dgetrf_(void);\nint main(void){dgetrf_();return 0;}\n' > "$tmp/t.c"
     "$cc" "$tmp/t.c" -o "$tmp/t" -llapack -lblas >/dev/null 2>&1 \
       || missing="$missing liblapack-dev/libblas-dev"
+    printf '#include <suitesparse/klu.h>\nint main(void){klu_common c;return klu_defaults(&c)!=1;}\n' > "$tmp/k.c"
+    "$cc" "$tmp/k.c" -o "$tmp/k" -lklu -lsuitesparseconfig >/dev/null 2>&1 \
+      || missing="$missing libsuitesparse-dev"
   fi
 }
 
