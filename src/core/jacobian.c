@@ -5,6 +5,7 @@
    Hessian as FCN's second output), checked once on its first use and
    again after a Newton failure, or forward differences of f. */
 #include "calls.h"
+#include "numerics/numerics.h"
 
 #include <float.h>
 #include <math.h>
@@ -259,16 +260,24 @@ jac_fd (sym_eval *ev, double t, const double *y, const double *f0,
    one direction with a forward difference of rhs, and dropped for finite
    differences (into df) when it is grossly too large.  A failed call of rhs returns its status,
    as in the finite differences, and leaves the probe to be made again. */
+static int jac_fd_csc (sym_eval *ev, double t, const double *y,
+                       const double *f0, sym_csc *df);
+static int own_pattern (sym_eval *ev, const sym_csc *df);
+static int jac_check_csc (sym_eval *ev, double t, const double *y,
+                          int *dropped);
+
+/* (df dense, or dfs sparse) */
 static int
 jac_probe (sym_eval *ev, double t, const double *y, const double *f0,
-           double *df)
+           double *df, sym_csc *dfs)
 {
   const int n = 2 * ev->dim;
   ev->jac_probed = 1;
-  double *w = sym_malloc (4 * (size_t) n * sizeof (double));
+  double *w = sym_malloc (6 * (size_t) n * sizeof (double));
   if (! w)
     return SYM_ENOMEM;
   double *fb = w, *yp = w + n, *fp = w + 2 * n, *size = w + 3 * n;
+  double *dy = w + 4 * n, *pred = w + 5 * n;
   long before = ev->st.cnt.nrhs;
   int st = SYM_SUCCESS;
   if (! f0)
@@ -313,25 +322,35 @@ jac_probe (sym_eval *ev, double t, const double *y, const double *f0,
       return st;
     }
   double dif = 0.0, ref = 0.0, fbig = 0.0;
+  for (int j = 0; j < n; j++)
+    dy[j] = yp[j] - y[j];
+  if (dfs)
+    sym_csc_mv (dfs, dy, pred);
+  else
+    for (int i = 0; i < n; i++)
+      {
+        pred[i] = 0.0;
+        for (int j = 0; j < n; j++)
+          pred[i] += df[i + (size_t) j * n] * dy[j];
+      }
   for (int i = 0; i < n; i++)
     {
-      double pred = 0.0;
-      for (int j = 0; j < n; j++)
-        pred += df[i + (size_t) j * n] * (yp[j] - y[j]);
       double del = fp[i] - f0[i];
-      dif = fmax (dif, fabs (del - pred));
+      dif = fmax (dif, fabs (del - pred[i]));
       ref = fmax (ref, fabs (del));
       fbig = fmax (fbig, fmax (fabs (f0[i]), fabs (fp[i])));
     }
   /* the difference's own round-off: f's rounding, a few ulps of f */
   ref += SYM_JAC_NOISE * DBL_EPSILON * fbig;
-  if (dif > SYM_JAC_GROSS * ref)
+  if (dif > SYM_JAC_GROSS * ref && ! (dfs && (st = own_pattern (ev, dfs))))
     {
       ev->jac = NULL;
       ev->rhs_jac = NULL;
+      ev->jac_csc = NULL;
+      ev->rhs_jac_csc = NULL;
       ev->st.jac_dropped = 1;
       ev->st.jac_dropped_t = t;
-      st = jac_fd (ev, t, y, f0, df);
+      st = dfs ? jac_fd_csc (ev, t, y, f0, dfs) : jac_fd (ev, t, y, f0, df);
     }
   sym_free (w);
   return st;
@@ -350,7 +369,7 @@ sym_jac (sym_eval *ev, double t, const double *y, const double *f0,
     return st;
   if (! sym_all_finite ((size_t) n * (size_t) n, df))
     return sym_nonfinite_df_at (ev, t);
-  return ev->jac_probed ? SYM_SUCCESS : jac_probe (ev, t, y, f0, df);
+  return ev->jac_probed ? SYM_SUCCESS : jac_probe (ev, t, y, f0, df, NULL);
 }
 
 int
@@ -372,7 +391,7 @@ sym_rhs_jac (sym_eval *ev, double t, const double *y, double *dy,
     return sym_nonfinite_at (ev, t);
   if (! sym_all_finite ((size_t) n * (size_t) n, df))
     return sym_nonfinite_df_at (ev, t);
-  return ev->jac_probed ? SYM_SUCCESS : jac_probe (ev, t, y, dy, df);
+  return ev->jac_probed ? SYM_SUCCESS : jac_probe (ev, t, y, dy, df, NULL);
 }
 
 int
@@ -406,6 +425,9 @@ sym_jac_check (sym_eval *ev, double t, const double *y, int *dropped)
 {
   const size_t n = 2 * (size_t) ev->dim;
   *dropped = 0;
+  if (ev->sparse)
+    return ev->jac_csc || ev->rhs_jac_csc
+           ? jac_check_csc (ev, t, y, dropped) : SYM_SUCCESS;
   if (! ev->jac && ! ev->rhs_jac)
     return SYM_SUCCESS;
   double *w = sym_malloc ((2 * n * n + n) * sizeof (double));
@@ -444,4 +466,251 @@ sym_jac_check (sym_eval *ev, double t, const double *y, int *dropped)
     }
   sym_free (w);
   return st;
+}
+
+/* ---------------------------------------------------------------- sparse */
+
+/* Forward differences on the pattern into the sparse df: one stepped
+   state for each colour (all in one batch call when there is one, up to
+   SYM_FD_BATCH_DOUBLES values), the values read from the rows of each
+   column's pattern.  f0 = f(t, y), or NULL: one more call.  Counted in
+   nfd (and nrhs). */
+static int
+jac_fd_csc (sym_eval *ev, double t, const double *y, const double *f0,
+            sym_csc *df)
+{
+  const int n = 2 * ev->dim, ng = ev->jp_ncolors;
+  if (ng <= 0)
+    return SYM_EBADINPUT;
+  const int nnz = ev->jp_colptr[n];
+  if (sym_csc_reserve (df, nnz))
+    return SYM_ENOMEM;
+  size_t ncw = ev->rhs_batch ? (size_t) ng : 1;
+  if (ncw * n > SYM_FD_BATCH_DOUBLES)
+    ncw = SYM_FD_BATCH_DOUBLES / n > 0 ? SYM_FD_BATCH_DOUBLES / n : 1;
+  double *w = sym_malloc ((2 * ncw + 3) * (size_t) n * sizeof (double)
+                          + ncw * sizeof (double));
+  if (! w)
+    return SYM_ENOMEM;
+  double *yp = w, *fp = w + ncw * n, *del = fp + ncw * n, *size = del + n;
+  double *fb = size + n, *tp = fb + n;
+  long before = ev->st.cnt.nrhs;
+  int st = SYM_SUCCESS;
+  if (! f0 && ! (st = sym_rhs (ev, t, y, fb)))
+    f0 = fb;
+  const double sq = sqrt (DBL_EPSILON);
+  /* f NaN or Inf at a stepped state: all of them once more backwards */
+  for (int pass = 0; f0 && pass < 2; pass++)
+    {
+      if (pass == 1 && st != SYM_NONFINITE)
+        break;
+      st = SYM_SUCCESS;
+      fd_sizes (ev, y, size);
+      for (int i = 0; i < n; i++)
+        {
+          volatile double yi = y[i] + (pass ? -sq : sq) * size[i];
+          del[i] = yi - y[i];       /* an exact representable step */
+        }
+      for (int g0 = 0; g0 < ng && ! st; g0 += (int) ncw)
+        {
+          const int g1 = g0 + (int) ncw < ng ? g0 + (int) ncw : ng;
+          for (int g = g0; g < g1; g++)
+            {
+              double *col = yp + (size_t) (g - g0) * n;
+              memcpy (col, y, (size_t) n * sizeof (double));
+              tp[g - g0] = t;
+            }
+          for (int j = 0; j < n; j++)
+            if (ev->jp_color[j] >= g0 && ev->jp_color[j] < g1)
+              yp[(size_t) (ev->jp_color[j] - g0) * n + j] += del[j];
+          st = ev->rhs_batch ? sym_rhs_many (ev, g1 - g0, tp, yp, fp)
+                             : sym_rhs (ev, t, yp, fp);
+          for (int j = 0; j < n && ! st; j++)
+            {
+              const int g = ev->jp_color[j];
+              if (g < g0 || g >= g1)
+                continue;
+              const double *fc = fp + (size_t) (g - g0) * n;
+              for (int r = ev->jp_colptr[j]; r < ev->jp_colptr[j + 1]; r++)
+                df->val[r] = (fc[ev->jp_rowind[r]] - f0[ev->jp_rowind[r]])
+                             / del[j];
+            }
+        }
+    }
+  if (! st)
+    {
+      df->n = n;
+      df->nnz = nnz;
+      memcpy (df->colptr, ev->jp_colptr, (size_t) (n + 1) * sizeof (int));
+      memcpy (df->rowind, ev->jp_rowind, (size_t) nnz * sizeof (int));
+    }
+  ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
+  sym_free (w);
+  return st;
+}
+
+int
+sym_jac_csc (sym_eval *ev, double t, const double *y, const double *f0,
+             sym_csc *df)
+{
+  if (! ev->jac_csc)
+    return jac_fd_csc (ev, t, y, f0, df);
+  ev->st.cnt.njac++;
+  int st = sym_callback_status (ev, t, ev->jac_csc (t, y, df, ev->user));
+  if (st)
+    return st;
+  if (! sym_all_finite ((size_t) df->nnz, df->val))
+    return sym_nonfinite_df_at (ev, t);
+  return ev->jac_probed ? SYM_SUCCESS : jac_probe (ev, t, y, f0, NULL, df);
+}
+
+int
+sym_rhs_jac_csc (sym_eval *ev, double t, const double *y, double *dy,
+                 sym_csc *df)
+{
+  if (! ev->rhs_jac_csc)
+    {
+      int st = sym_rhs (ev, t, y, dy);
+      return st ? st : sym_jac_csc (ev, t, y, dy, df);
+    }
+  ev->st.cnt.njac++;
+  ev->st.rhs_jac_used = 1;
+  int st = sym_callback_status (ev, t,
+                                ev->rhs_jac_csc (t, y, dy, df, ev->user));
+  if (st)
+    return st;
+  if (! sym_all_finite (2 * (size_t) ev->dim, dy))
+    return sym_nonfinite_at (ev, t);
+  if (! sym_all_finite ((size_t) df->nnz, df->val))
+    return sym_nonfinite_df_at (ev, t);
+  return ev->jac_probed ? SYM_SUCCESS : jac_probe (ev, t, y, dy, NULL, df);
+}
+
+/* The pattern of the finite differences that replace a dropped sparse
+   Df: the system's, or the dropped one's, coloured and kept in ev (freed
+   by sym_eval_free) */
+static int
+own_pattern (sym_eval *ev, const sym_csc *df)
+{
+  if (ev->jp_ncolors > 0)
+    return SYM_SUCCESS;
+  const int n = df->n, nnz = df->nnz;
+  int *w = sym_malloc (((size_t) 2 * n + 1 + nnz) * sizeof (int));
+  if (! w)
+    return SYM_ENOMEM;
+  memcpy (w, df->colptr, ((size_t) n + 1) * sizeof (int));
+  memcpy (w + n + 1, df->rowind, (size_t) nnz * sizeof (int));
+  int *color = w + n + 1 + nnz;
+  const int nc = sym_pattern_colors (n, w, w + n + 1, color);
+  if (nc < 1)
+    {
+      sym_free (w);
+      return nc < 0 ? SYM_ENOMEM : SYM_EBADINPUT;
+    }
+  ev->own_pattern = w;
+  ev->jp_colptr = w;
+  ev->jp_rowind = w + n + 1;
+  ev->jp_color = color;
+  ev->jp_ncolors = nc;
+  return SYM_SUCCESS;
+}
+
+void
+sym_eval_free (sym_eval *ev)
+{
+  if (ev->own_pattern)
+    {
+      sym_free (ev->own_pattern);
+      ev->own_pattern = NULL;
+      ev->jp_colptr = ev->jp_rowind = ev->jp_color = NULL;
+      ev->jp_ncolors = 0;
+    }
+}
+
+/* the largest |a - b| and the largest entry of a and b: column by column
+   through the dense column w (n zeros, left zero) */
+static void
+csc_compare (const sym_csc *a, const sym_csc *b, double *w, double *dif,
+             double *big)
+{
+  *dif = *big = 0.0;
+  for (int j = 0; j < a->n; j++)
+    {
+      for (int e = a->colptr[j]; e < a->colptr[j + 1]; e++)
+        {
+          w[a->rowind[e]] = a->val[e];
+          *big = fmax (*big, fabs (a->val[e]));
+        }
+      for (int e = b->colptr[j]; e < b->colptr[j + 1]; e++)
+        {
+          w[b->rowind[e]] -= b->val[e];
+          *big = fmax (*big, fabs (b->val[e]));
+        }
+      for (int pass = 0; pass < 2; pass++)
+        {
+          const sym_csc *m = pass ? b : a;
+          for (int e = m->colptr[j]; e < m->colptr[j + 1]; e++)
+            {
+              *dif = fmax (*dif, fabs (w[m->rowind[e]]));
+              w[m->rowind[e]] = 0.0;
+            }
+        }
+    }
+}
+
+/* sym_jac_check for a sparse Df: the finite differences on the system's
+   pattern, or on the user's Df's own */
+static int
+jac_check_csc (sym_eval *ev, double t, const double *y, int *dropped)
+{
+  const int n = 2 * ev->dim;
+  sym_csc du, dfd;
+  double *w = sym_calloc (2 * (size_t) n, sizeof (double));
+  int st = sym_csc_init (&du, n, 0);
+  if (! st)
+    st = sym_csc_init (&dfd, n, 0);
+  if (st || ! w)
+    {
+      sym_csc_free (&du);
+      sym_free (w);
+      return SYM_ENOMEM;
+    }
+  double *f = w + n;
+  sym_jac_csc_fn jac = ev->jac_csc;
+  sym_rhs_jac_csc_fn rhs_jac = ev->rhs_jac_csc;
+  st = rhs_jac ? sym_rhs_jac_csc (ev, t, y, f, &du)
+               : sym_jac_csc (ev, t, y, NULL, &du);
+  int bad_du = st == SYM_NONFINITE && ev->st.fail_df;
+  if ((! st || bad_du) && ! (st = own_pattern (ev, &du)))
+    {
+      ev->jac_csc = NULL;
+      ev->rhs_jac_csc = NULL;
+      st = jac_fd_csc (ev, t, y, rhs_jac ? f : NULL, &dfd);
+      double big = 0.0, dif = 0.0;
+      if (! st && ! bad_du)
+        csc_compare (&du, &dfd, w, &dif, &big);
+      *dropped = ! st && (bad_du || dif > SYM_JAC_AGREE * big);
+      if (*dropped)
+        {
+          ev->st.jac_dropped = 1;
+          ev->st.jac_dropped_t = t;
+        }
+      else
+        {
+          ev->jac_csc = jac;
+          ev->rhs_jac_csc = rhs_jac;
+        }
+    }
+  sym_csc_free (&du);
+  sym_csc_free (&dfd);
+  sym_free (w);
+  return st;
+}
+
+int
+sym_jac_cost (const sym_eval *ev)
+{
+  if (ev->jac || ev->rhs_jac || ev->jac_csc || ev->rhs_jac_csc)
+    return 1;
+  return ev->sparse && ev->jp_ncolors > 0 ? ev->jp_ncolors : 2 * ev->dim;
 }

@@ -88,6 +88,30 @@ typedef int (*sym_jac_fn) (double t, const double *y, double *df, void *user);
 typedef int (*sym_rhs_jac_fn) (double t, const double *y, double *dy,
                                double *df, void *user);
 
+/* A sparse n-by-n matrix in compressed columns: the rows of column j
+   are rowind[colptr[j] .. colptr[j+1] - 1] (increasing), their values
+   val[...]; nnz = colptr[n] entries, room for cap.  Df of a large
+   system comes so (sym_system.sparse). */
+typedef struct {
+  int n, nnz, cap;
+  int *colptr;      /* n + 1 */
+  int *rowind;      /* cap */
+  double *val;      /* cap */
+} sym_csc;
+
+/* an n-by-n matrix without entries, with room for cap of them */
+int sym_csc_init (sym_csc *a, int n, int cap);
+/* room for cap entries, the content kept */
+int sym_csc_reserve (sym_csc *a, int cap);
+void sym_csc_free (sym_csc *a);     /* safe on a zeroed struct */
+
+/* Df as a sparse matrix (sym_system.sparse): the callback fills df
+   (sym_csc_reserve for room) */
+typedef int (*sym_jac_csc_fn) (double t, const double *y, sym_csc *df,
+                               void *user);
+typedef int (*sym_rhs_jac_csc_fn) (double t, const double *y, double *dy,
+                                   sym_csc *df, void *user);
+
 /* The user's system: read-only to the core. */
 typedef struct {
   int dim;                    /* d: y has n = 2d components */
@@ -105,6 +129,12 @@ typedef struct {
      column, and Df is zero outside the pattern */
   const int *jp_colptr, *jp_rowind, *jp_color;
   int jp_ncolors;
+  /* sparse (optional, 0: dense): Df is sparse; it comes from jac_csc or
+     rhs_jac_csc (jac and rhs_jac unused), or from finite differences on
+     the pattern jp_* (required then) */
+  int sparse;
+  sym_jac_csc_fn jac_csc;
+  sym_rhs_jac_csc_fn rhs_jac_csc;
 } sym_system;
 
 /* Colour the columns of an n-by-n pattern (compressed columns, as in
@@ -165,6 +195,11 @@ typedef struct {
   void *user;
   const int *jp_colptr, *jp_rowind, *jp_color;   /* as in sym_system */
   int jp_ncolors;
+  int sparse;                 /* as in sym_system, with its callbacks */
+  sym_jac_csc_fn jac_csc;
+  sym_rhs_jac_csc_fn rhs_jac_csc;
+  int *own_pattern;           /* a pattern of its own (of a dropped sparse
+                                 Df) that jp_* point into, or NULL */
   sym_stats st;
   int jac_probed;             /* the first Df has been probed (see
                                  SYM_JAC_GROSS) */
@@ -176,6 +211,8 @@ typedef struct {
 
 /* ev from sys, with zeroed stats */
 void sym_eval_init (sym_eval *ev, const sym_system *sys);
+/* what ev allocated itself (own_pattern) */
+void sym_eval_free (sym_eval *ev);
 
 /* Calls through ev with counting and checks.  sym_rhs returns the
    callback's status, or SYM_NONFINITE when dy has a NaN or Inf (fail_t is
@@ -212,6 +249,15 @@ int sym_rhs_jac_many (sym_eval *ev, int k, const double *t,
    is one, else sym_rhs and sym_jac. */
 int sym_rhs_jac (sym_eval *ev, double t, const double *y, double *dy,
                  double *df);
+/* Sparse Df (ev->sparse): sym_jac and sym_rhs_jac for a sym_csc, from
+   the callbacks or from finite differences on the pattern (jp_*: one
+   state for each colour); the user's sparse Df is probed and checked as
+   a dense one is, and replaced by finite differences on the system's
+   pattern, or on its own, when it proves wrong */
+int sym_jac_csc (sym_eval *ev, double t, const double *y, const double *f0,
+                 sym_csc *df);
+int sym_rhs_jac_csc (sym_eval *ev, double t, const double *y, double *dy,
+                     sym_csc *df);
 /* After a Newton failure with the user's Df: compare it at (t, y) with
    forward differences of rhs.  If they differ by more than SYM_JAC_AGREE
    times the largest entry of either (a Hessian that misses a forcing
@@ -220,6 +266,9 @@ int sym_rhs_jac (sym_eval *ev, double t, const double *y, double *dy,
    then on) and *dropped is set.  Returns a callback's status (then nothing
    is dropped) or SYM_SUCCESS. */
 int sym_jac_check (sym_eval *ev, double t, const double *y, int *dropped);
+/* What a Df costs, in calls of f: 1 from the user's, 2d by finite
+   differences (a sparse Df: one per colour of its pattern) */
+int sym_jac_cost (const sym_eval *ev);
 /* Separable steps check, with the f they evaluate anyway, that f_p does
    not change with p at the same (t, q) (SE) or f_q with q at the same p
    (SV): whether u and v (k values) differ by more than SYM_SEP_TOL of
@@ -293,6 +342,8 @@ typedef struct {
   int second_order;
   int method;
   int compensated;
+  int sparse;   /* Df sparse (sym_system.sparse): the implicit solves of
+                   SE and SV factor theirs by KLU */
 } sym_onestep_opts;
 extern const sym_stepper_type *const sym_step_se;
 extern const sym_stepper_type *const sym_step_sv;
@@ -323,12 +374,21 @@ extern const sym_stepper_type *const sym_step_splitting;
 
 /* odeSPVI: q_dofs Legendre modes of q, nodes Gauss-Legendre nodes (0:
    SYM_SPVI_NODES and nodes + 1); Newton's matrix kept across steps,
-   new at every step, or chosen (SYM_MATRIX_*) */
+   new at every step, or chosen (SYM_MATRIX_*); Newton's linear systems
+   (SYM_SYSTEM_*): the whole step's, one dense LU of ((q_dofs - 1 +
+   nodes) d)^2, or ceil(nodes/2) stage systems of size 2d with one
+   Jacobian for all nodes (the pairs q_dofs = nodes + 1 only), or chosen:
+   stages when Df is sparse or the whole system has more than
+   SYM_SPVI_STAGES_N unknowns.  sparse: the system's Df is sparse
+   (sym_system.sparse; stages then) */
 typedef struct {
   int q_dofs, nodes;
   int newton_matrix;
+  int system;
+  int sparse;
 } sym_spvi_opts;
 enum { SYM_MATRIX_AUTO = 0, SYM_MATRIX_KEPT = 1, SYM_MATRIX_NEW = 2 };
+enum { SYM_SYSTEM_AUTO = 0, SYM_SYSTEM_FULL = 1, SYM_SYSTEM_STAGES = 2 };
 extern const sym_stepper_type *const sym_step_spvi;
 /* its order: 2 min(n - 1, 2m - n + 1) for n modes and m nodes */
 int sym_spvi_order (int q_dofs, int nodes);

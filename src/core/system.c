@@ -89,6 +89,15 @@ sym_eval_init (sym_eval *ev, const sym_system *sys)
   ev->jac = sys->jac;
   ev->rhs_jac = sys->rhs_jac;
   ev->user = sys->user;
+  ev->sparse = sys->sparse;
+  if (sys->sparse)
+    {
+      /* a sparse Df comes only as one */
+      ev->jac = NULL;
+      ev->rhs_jac = NULL;
+      ev->jac_csc = sys->jac_csc;
+      ev->rhs_jac_csc = sys->rhs_jac_csc;
+    }
   if (sys->jp_ncolors > 0 && sys->jp_colptr && sys->jp_rowind
       && sys->jp_color)
     {

@@ -194,6 +194,12 @@
    only while its LU is this small: an LU of 64 unknowns costs about two
    callbacks of Octave */
 #define SYM_SPVI_EVERY_N 64
+/* by default Newton's systems go by stages (staged.c) above this many
+   unknowns of the whole step system */
+#define SYM_SPVI_STAGES_N 600
+/* the stage reduction needs the same S from q's and p's equations: to
+   this relative round-off */
+#define SYM_SPVI_STAGE_SAME 1e-10
 /* steps of the same size, up to the round-off of fixed steps */
 #define SYM_SAME_STEP 1e-10
 

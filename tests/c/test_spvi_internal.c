@@ -33,7 +33,7 @@ matrix_vs_fd (int n, int m, sym_eval *ev, const double *yk, double h,
               unsigned seed)
 {
   spvi_core c;
-  if (spvi_core_init (&c, ev->dim, n, m))
+  if (spvi_core_init (&c, ev->dim, n, m, SPVI_FULL))
     return INFINITY;
   setup (&c, ev, 0.1, h, yk);
   const int N = c.N, d = ev->dim;
@@ -228,7 +228,7 @@ scenario_extrapolate (void)
   for (int m = 1; m <= 4; m++)
     {
       spvi_core c;
-      if (spvi_core_init (&c, 1, m + 1, m))
+      if (spvi_core_init (&c, 1, m + 1, m, SPVI_FULL))
         {
           ok = 0;
           continue;
@@ -280,8 +280,8 @@ scenario_borrow (void)
   for (int m = 2; m <= 4; m++)
     {
       spvi_core lo, hi;
-      if (spvi_core_init (&lo, 1, m + 1, m)
-          || spvi_core_init (&hi, 1, m + 2, m + 1))
+      if (spvi_core_init (&lo, 1, m + 1, m, SPVI_FULL)
+          || spvi_core_init (&hi, 1, m + 2, m + 1, SPVI_FULL))
         {
           ok = 0;
           continue;

@@ -131,6 +131,7 @@ run_free (sym_run *r)
   sym_free (r->y);
   if (r->state)
     r->type->free (r->state);
+  sym_eval_free (&r->ev);
 }
 
 /* The first row and event values; the schedule of fixed steps, or the
@@ -252,7 +253,7 @@ check_jacobian (sym_run *r, int st, int *again)
   sym_eval *ev = &r->ev;
   *again = 0;
   if (! (st == SYM_NEWTON_FAIL || (st == SYM_NONFINITE && ev->st.fail_df))
-      || ! (ev->jac || ev->rhs_jac)
+      || ! (ev->jac || ev->rhs_jac || ev->jac_csc || ev->rhs_jac_csc)
       || r->jac_checked_at == ev->st.cnt.nsteps
       || r->jac_agreed >= SYM_JAC_CHECKS)
     return st;

@@ -168,7 +168,7 @@ sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
       if (nw->iters > SYM_NW_BASE)
         {
           k->extra += nw->iters - SYM_NW_BASE;
-          if (k->extra >= (ev->jac ? 1 : 2 * d))
+          if (k->extra >= sym_jac_cost (ev))
             sym_newton_invalidate (nw);
         }
       /* the cache holds f at the previous iterate, a round-off step away */
@@ -189,13 +189,45 @@ sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
 }
 
 int
-sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts)
+sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts, int sparse)
 {
-  if (sym_newton_init (&k->nw, d, opts))
+  k->sparse = sparse;
+  if (sym_newton_init (&k->nw, d, opts)
+      || (sparse ? sym_stage_lu_init (&k->slu, d, 1)
+                   || sym_csc_init (&k->blk, d, 0)
+                 : sym_newton_lu (&k->nw)))
     return SYM_ENOMEM;
   k->tol = k->nw.tol;
   k->nw.tol *= SYM_FIXED_TOL_KEPT;
   return SYM_SUCCESS;
+}
+
+void
+sym_kept_free (sym_kept *k)
+{
+  sym_newton_free (&k->nw);
+  sym_stage_lu_free (&k->slu);
+  sym_csc_free (&k->blk);
+}
+
+int
+sym_kept_factor (sym_kept *k, const sym_fcache *fc, int r0, double c,
+                 double h, sym_counters *cnt)
+{
+  int st = sym_csc_block (&fc->js, r0, r0, fc->d, &k->blk);
+  if (! st)
+    st = sym_stage_lu_factor (&k->slu, c, 0.0, NULL, 0, &k->blk, cnt);
+  if (! st)
+    sym_kept_built (k, h);
+  return st;
+}
+
+/* the solve with sym_kept_factor's LU (a problem's solve; ctx: the
+   sym_kept) */
+static int
+kept_lsolve (sym_kept *k, double *b, sym_counters *cnt)
+{
+  return sym_stage_lu_solve (&k->slu, b, cnt);
 }
 
 void
@@ -233,6 +265,21 @@ kick_matrix (void *ctx, const double *x, double *a)
         - kk->c * kk->fc->jw[(d + i) + (size_t) (d + j) * n];
   sym_kept_built (kk->k, kk->h);
   return SYM_SUCCESS;
+}
+
+/* the sparse kick matrix I - c A_pp (a problem's factor and solve) */
+static int
+kick_factor (void *ctx, const double *x, sym_counters *cnt)
+{
+  const sym_kick *kk = ctx;
+  int st = sym_fcache_jac (kk->fc, kk->ev, kk->t, kk->yk, x);
+  return st ? st : sym_kept_factor (kk->k, kk->fc, kk->d, kk->c, kk->h, cnt);
+}
+
+static int
+kick_lsolve (void *ctx, double *b, sym_counters *cnt)
+{
+  return kept_lsolve (((const sym_kick *) ctx)->k, b, cnt);
 }
 
 /* The kick's explicit start into xb: p_k + c f_p(t_k, y_k) when f there
@@ -296,7 +343,9 @@ sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
 {
   const int d = kk->d;
   const double *p0 = r->trial->y0 + d;
-  sym_newton_problem prob = { kick_residual, kick_matrix, (void *) kk };
+  sym_newton_problem prob = { kick_residual, kick_matrix, (void *) kk,
+                              kk->k->sparse ? kick_factor : NULL,
+                              kk->k->sparse ? kick_lsolve : NULL };
   double *xb = kk->pr->xb;
   int kind = kick_explicit (kk, r, cont, prev, xb);
   /* f(t_k, y_k) is evaluated when there is no explicit start without it,

@@ -31,6 +31,7 @@ sym_onestep_new (int dim, int order, size_t size,
   o->second_order = own && own->second_order;
   o->separable = o->second_order || (own && own->separable);
   o->want_f = opts && opts->want_dense;
+  o->sparse = own && own->sparse && ! o->separable;
   return o;
 }
 
@@ -248,7 +249,13 @@ sym_fcache_jac (sym_fcache *c, sym_eval *ev, double t, const double *a,
   const int d = c->d;
   int st;
   c->have_jw = 0;
-  if (! ev->jac)
+  if (c->sparse)
+    {
+      if ((st = sym_fcache_f (c, ev, t, a, b)))
+        return st;
+      st = sym_jac_csc (ev, t, c->yw, c->fw, &c->js);
+    }
+  else if (! ev->jac)
     {
       if ((st = sym_fcache_f (c, ev, t, a, b)))
         return st;
@@ -277,10 +284,15 @@ sym_fcache_move (sym_fcache *c, double t, const double *a, const double *b)
       dy[j] = a[j] - c->yw[j];
       dy[d + j] = b[j] - c->yw[d + j];
     }
-  for (int j = 0; j < n; j++)
-    if (dy[j] != 0.0)
-      for (int i = 0; i < n; i++)
-        c->fw[i] += c->jw[i + (size_t) j * n] * dy[j];
+  if (c->sparse)
+    for (int j = 0; j < n; j++)
+      for (int e = c->js.colptr[j]; e < c->js.colptr[j + 1]; e++)
+        c->fw[c->js.rowind[e]] += c->js.val[e] * dy[j];
+  else
+    for (int j = 0; j < n; j++)
+      if (dy[j] != 0.0)
+        for (int i = 0; i < n; i++)
+          c->fw[i] += c->jw[i + (size_t) j * n] * dy[j];
   memcpy (c->yw, a, (size_t) d * sizeof (double));
   memcpy (c->yw + d, b, (size_t) d * sizeof (double));
 }
@@ -292,7 +304,7 @@ sym_onestep_implicit (sym_onestep *o, int npr, int d,
 {
   o->npr = npr;
   for (int k = 0; k < npr; k++)
-    if (sym_kept_init (&o->k[k], d, opts))
+    if (sym_kept_init (&o->k[k], d, opts, o->sparse))
       return SYM_ENOMEM;
   return SYM_SUCCESS;
 }
@@ -305,7 +317,8 @@ sym_onestep_free (void *state)
     return;
   /* safe on a zeroed struct too */
   for (int k = 1; k >= 0; k--)
-    sym_newton_free (&o->k[k].nw);
+    sym_kept_free (&o->k[k]);
+  sym_csc_free (&o->fc.js);
   sym_free (o->block);
   sym_free (o);
 }

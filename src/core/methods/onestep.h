@@ -56,6 +56,8 @@ void sym_rec_hermite (const sym_rec *c, int n, double th, double *y);
 typedef struct {
   int d;
   double *yw, *fw, *ym, *jw;    /* n, n, n, n*n */
+  int sparse;                   /* Df into js, not jw */
+  sym_csc js;
   double tw;
   int have_fw;
   int have_jw;                  /* jw holds a Df (of some recent point) */
@@ -146,10 +148,20 @@ typedef struct {
   double h_mat;
   long extra;
   double tol;
+  /* a sparse Df: the matrix I - c B (B a block of Df) by KLU */
+  int sparse;
+  sym_stage_lu slu;
+  sym_csc blk;
 } sym_kept;
 
 /* sym_newton_init for d unknowns, the tolerance of fixed steps */
-int sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts);
+int sym_kept_init (sym_kept *k, int d, const sym_method_opts *opts,
+                   int sparse);
+void sym_kept_free (sym_kept *k);
+/* a sparse Newton matrix I - c B, B the d-by-d block of fc's Df at (r0,
+   r0), factored (a matrix callback's work, sym_kept_built included) */
+int sym_kept_factor (sym_kept *k, const sym_fcache *fc, int r0, double c,
+                     double h, sym_counters *cnt);
 /* adaptive steps: the tolerance itself */
 void sym_kept_adaptive (sym_kept *k);
 /* to be called by a matrix callback that has built a matrix for h */
@@ -222,6 +234,7 @@ typedef struct {
   sym_kept k[2];         /* and Newton state */
   int want_f;            /* f at both ends of every step (estimate,
                             dense output) */
+  int sparse;            /* implicit with a sparse Df */
 } sym_onestep;
 
 /* The start of the SE and SV allocs: a zeroed state of size bytes with

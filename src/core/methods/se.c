@@ -57,7 +57,7 @@ se_alloc (int dim, const sym_method_opts *opts, int *status)
   /* records, f cache, and x, scale, rv: 3d; the separable step is
      explicit: no Df and no Newton state (O(d^2) memory) */
   const int implicit = ! s->o.separable;
-  size_t len = sym_recs_len (n, 0) + sym_fcache_len (d, implicit)
+  size_t len = sym_recs_len (n, 0) + sym_fcache_len (d, implicit && ! s->o.sparse)
                + 3 * (size_t) d + (implicit ? sym_pred_len (d) : 0);
   s->o.block = sym_calloc (len, sizeof (double));
   if (! s->o.block
@@ -70,8 +70,15 @@ se_alloc (int dim, const sym_method_opts *opts, int *status)
   double *w = s->o.block;
   sym_recs_place (&s->o.r, n, 0, w);
   w += sym_recs_len (n, 0);
-  sym_fcache_place (&s->o.fc, d, implicit, w);
-  w += sym_fcache_len (d, implicit);
+  sym_fcache_place (&s->o.fc, d, implicit && ! s->o.sparse, w);
+  s->o.fc.sparse = s->o.sparse;
+  if (s->o.sparse && sym_csc_init (&s->o.fc.js, n, 0))
+    {
+      sym_onestep_free (s);
+      *status = SYM_ENOMEM;
+      return NULL;
+    }
+  w += sym_fcache_len (d, implicit && ! s->o.sparse);
   s->x = w; w += d;
   s->scale = w; w += d;
   s->rv = w; w += d;

@@ -102,6 +102,24 @@ mat_q (void *ctx, const double *x, double *a)
   return SYM_SUCCESS;
 }
 
+/* the sparse matrix of the drift, I - (h/2) A_qq (a problem's factor and
+   solve) */
+static int
+factor_q (void *ctx, const double *x, sym_counters *cnt)
+{
+  sv_state *s = ctx;
+  int st = sym_fcache_jac (&s->o.fc, s->ev, s->tk + s->hk, x, s->pk);
+  return st ? st : sym_kept_factor (&s->o.k[1], &s->o.fc, 0, 0.5 * s->hk,
+                                    s->hk, cnt);
+}
+
+static int
+lsolve_q (void *ctx, double *b, sym_counters *cnt)
+{
+  sv_state *s = ctx;
+  return sym_stage_lu_solve (&s->o.k[1].slu, b, cnt);
+}
+
 static void *
 sv_alloc (int dim, const sym_method_opts *opts, int *status)
 {
@@ -115,7 +133,7 @@ sv_alloc (int dim, const sym_method_opts *opts, int *status)
   /* records (aux: 2d), f cache, and x, scale, rv, fqa: 4d, ym: n; the
      separable step is explicit: no Df and no Newton state (O(d^2)) */
   const int implicit = ! s->o.separable;
-  size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d, implicit)
+  size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d, implicit && ! s->o.sparse)
                + 4 * (size_t) d + (size_t) n
                + (implicit ? 2 * sym_pred_len (d) : 0);
   s->o.block = sym_calloc (len, sizeof (double));
@@ -129,8 +147,15 @@ sv_alloc (int dim, const sym_method_opts *opts, int *status)
   double *w = s->o.block;
   sym_recs_place (&s->o.r, n, 2 * d, w);
   w += sym_recs_len (n, 2 * d);
-  sym_fcache_place (&s->o.fc, d, implicit, w);
-  w += sym_fcache_len (d, implicit);
+  sym_fcache_place (&s->o.fc, d, implicit && ! s->o.sparse, w);
+  s->o.fc.sparse = s->o.sparse;
+  if (s->o.sparse && sym_csc_init (&s->o.fc.js, n, 0))
+    {
+      sym_onestep_free (s);
+      *status = SYM_ENOMEM;
+      return NULL;
+    }
+  w += sym_fcache_len (d, implicit && ! s->o.sparse);
   s->x = w; w += d;
   s->scale = w; w += d;
   s->rv = w; w += d;
@@ -244,7 +269,9 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
          f_q(t_k, q_k, P) when it serves, else (and again after a
          recoverable failure from there) by the base (sym_pred_solve) */
       s->pk = ph;
-      sym_newton_problem pq = { res_q, mat_q, s };
+      sym_newton_problem pq = { res_q, mat_q, s,
+                                s->o.sparse ? factor_q : NULL,
+                                s->o.sparse ? lsolve_q : NULL };
       double *base = s->o.pr[1].xb;
       for (int i = 0; i < d; i++)
         base[i] = q0[i] + h * s->fqa[i];

@@ -40,7 +40,7 @@ sym_newton_init (sym_newton *nw, int n, const sym_method_opts *opts)
               : SYM_NEWTON_MAXIT;
   nw->eta = 1.0;
   nw->r = sym_malloc ((size_t) 3 * n * sizeof (double));
-  if (! nw->r || sym_lu_init (&nw->lu, n))
+  if (! nw->r)
     {
       sym_newton_free (nw);
       return SYM_ENOMEM;
@@ -56,6 +56,12 @@ sym_newton_free (sym_newton *nw)
   sym_lu_free (&nw->lu);
   sym_free (nw->r);
   nw->r = nw->dx = nw->x0 = NULL;
+}
+
+int
+sym_newton_lu (sym_newton *nw)
+{
+  return nw->lu.a ? SYM_SUCCESS : sym_lu_init (&nw->lu, nw->n);
 }
 
 void
@@ -87,7 +93,8 @@ sym_newton_dx (sym_newton *nw, const sym_newton_problem *p, const double *x,
     return st;
   for (int i = 0; i < nw->n; i++)
     nw->dx[i] = -nw->r[i];
-  st = sym_lu_solve (&nw->lu, nw->dx, c);
+  st = p->solve ? p->solve (p->ctx, nw->dx, c)
+                : sym_lu_solve (&nw->lu, nw->dx, c);
   if (! st && scale && dxn)
     *dxn = scaled_norm (nw->n, nw->dx, scale);
   return st;
@@ -102,18 +109,31 @@ sym_newton_apply (sym_newton *nw, double *x, sym_counters *c)
     c->nnewton++;
 }
 
+/* G'(x) evaluated and factored: by the problem's factor, or its matrix
+   and the dense LU */
+static int
+factor (sym_newton *nw, const sym_newton_problem *p, const double *x,
+        sym_counters *c)
+{
+  if (p->factor)
+    return p->factor (p->ctx, x, c);
+  int st = sym_newton_lu (nw);
+  if (! st && (st = p->matrix (p->ctx, x, nw->lu.a)))
+    /* the callback may have written part of the matrix: drop it */
+    sym_newton_invalidate (nw);
+  return st ? st : sym_lu_factor (&nw->lu, c);
+}
+
 static int
 new_matrix (sym_newton *nw, const sym_newton_problem *p, const double *x,
             sym_counters *c)
 {
-  int st = p->matrix (p->ctx, x, nw->lu.a);
-  if (st)
+  int st = factor (nw, p, x, c);
+  if (st && st != SYM_SINGULAR)
     {
-      /* the callback may have written part of the matrix: drop it */
       sym_newton_invalidate (nw);
       return st;
     }
-  st = sym_lu_factor (&nw->lu, c);
   nw->have_matrix = (st == SYM_SUCCESS);
   nw->fresh = nw->have_matrix;
   return st;
@@ -262,10 +282,8 @@ solve_full (sym_newton *nw, const sym_newton_problem *p, double *x,
   for (int k = 0; k < nw->maxit; k++)
     {
       nw->have_matrix = 0;
-      if ((st = p->matrix (p->ctx, x, nw->lu.a)))
-        return st;
-      if (sym_lu_factor (&nw->lu, c))
-        return SYM_NEWTON_FAIL;
+      if ((st = factor (nw, p, x, c)))
+        return st == SYM_SINGULAR ? SYM_NEWTON_FAIL : st;
       nw->have_matrix = 1;
       if ((st = sym_newton_dx (nw, p, x, scale, c, &dxn)))
         return st;

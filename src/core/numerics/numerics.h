@@ -35,6 +35,44 @@ void sym_lu_free (sym_lu *lu);
 int sym_lu_factor (sym_lu *lu, sym_counters *c);
 int sym_lu_solve (sym_lu *lu, double *b, sym_counters *c); /* b <- A \ b */
 
+/* ---------------------------------------------------------------- sparse */
+/* (sparse.c) a and b have the same n, colptr and rowind */
+int sym_csc_same_pattern (const sym_csc *a, const sym_csc *b);
+/* dst = src (dst grows as needed) */
+int sym_csc_copy (sym_csc *dst, const sym_csc *src);
+/* y = A x (A n-by-n, x and y n values, not overlapping) */
+void sym_csc_mv (const sym_csc *a, const double *x, double *y);
+/* the square block A(r0 : r0+nb-1, c0 : c0+nb-1) into dst (grows) */
+int sym_csc_block (const sym_csc *a, int r0, int c0, int nb, sym_csc *dst);
+
+/* The linear systems of Newton's staged solves (stagelu.c):
+   M = I - gamma J, gamma = gr + i gi, J n-by-n real, dense (column-major,
+   leading dimension ld) or sparse (sym_csc).  gi = 0: a real LU (LAPACK
+   dgetrf, or KLU), else a complex one (zgetrf, or KLU's complex
+   factorization); the sparse symbolic analysis is kept while the pattern
+   of J stays the same.  Every allocation, KLU's included, goes through
+   sym_malloc. */
+typedef struct {
+  int n;
+  int sparse;        /* J comes as sym_csc */
+  int cplx;          /* the factors are complex (gi != 0) */
+  int factored;
+  double *a;         /* dense: n*n real or complex (interleaved) */
+  int *ipiv;
+  void *klu;         /* sparse: the KLU objects (stagelu.c) */
+} sym_stage_lu;
+
+int sym_stage_lu_init (sym_stage_lu *s, int n, int sparse);
+void sym_stage_lu_free (sym_stage_lu *s);   /* safe on a zeroed struct */
+/* Factor I - (gr + i gi) J (J: dense with ld, or Js when sparse);
+   SYM_SINGULAR when singular or not finite, SYM_ENOMEM; counts nlu */
+int sym_stage_lu_factor (sym_stage_lu *s, double gr, double gi,
+                         const double *J, int ld, const sym_csc *Js,
+                         sym_counters *c);
+/* b <- M \ b: n doubles (real factors) or n complex values as (re, im)
+   pairs, 2n doubles (complex factors); counts nsolve */
+int sym_stage_lu_solve (sym_stage_lu *s, double *b, sym_counters *c);
+
 /* ---------------------------------------------------------------- Newton */
 /* Newton's method on G(x) = 0 (newton.c).  Simplified (the default mode):
    the matrix is kept (and its LU reused) while convergence is fast; the
@@ -51,13 +89,19 @@ typedef struct {
   /* A = G'(x) (or a good approximation), n-by-n column-major */
   int (*matrix) (void *ctx, const double *x, double *a);
   void *ctx;
+  /* optional, for a problem that factors its own matrix (NULL: matrix
+     and a dense LU): factor G'(x), or a good approximation (SYM_SINGULAR
+     when singular); solve b <- G'(x) \ b with those factors */
+  int (*factor) (void *ctx, const double *x, sym_counters *c);
+  int (*solve) (void *ctx, double *b, sym_counters *c);
 } sym_newton_problem;
 
 enum { SYM_NEWTON_SIMPLIFIED = 0, SYM_NEWTON_FULL = 1 };
 
 typedef struct {
   int n;
-  sym_lu lu;
+  sym_lu lu;        /* allocated at its first use: not for a problem
+                       with its own factor and solve */
   int mode;         /* SYM_NEWTON_SIMPLIFIED or _FULL */
   int have_matrix;  /* lu holds a factored matrix that may be reused */
   int fresh;        /* that matrix was computed in this solve */
@@ -83,6 +127,8 @@ typedef struct {
 /* tolerance and iterations from opts (0: the defaults) */
 int sym_newton_init (sym_newton *nw, int n, const sym_method_opts *opts);
 void sym_newton_free (sym_newton *nw);
+/* nw->lu allocated (SYM_ENOMEM) */
+int sym_newton_lu (sym_newton *nw);
 /* Forget the kept matrix (e.g. after a change of h). */
 void sym_newton_invalidate (sym_newton *nw);
 /* Solve G(x) = 0 from the start x (overwritten by the solution) in nw's

@@ -14,6 +14,7 @@ void
 spvi_core_free (spvi_core *c)
 {
   sym_newton_free (&c->nw);
+  spvi_stages_free (c);
   double **p[] = { &c->z, &c->w, &c->phi, &c->dl, &c->wdl, &c->g, &c->xb,
                    &c->bw, &c->A, &c->Y, &c->F, &c->tj, &c->xf, &c->x,
                    &c->scale, &c->x0, &c->Fo, &c->xfo, &c->wk, &c->Ae[0],
@@ -26,7 +27,7 @@ spvi_core_free (spvi_core *c)
 }
 
 int
-spvi_core_init (spvi_core *c, int d, int n, int m)
+spvi_core_init (spvi_core *c, int d, int n, int m, int stages)
 {
   memset (c, 0, sizeof (*c));
   c->n = n;
@@ -42,16 +43,17 @@ spvi_core_init (spvi_core *c, int d, int n, int m)
   c->g = sym_calloc (nm, sizeof (double));
   c->xb = sym_calloc (m + 2, sizeof (double));
   c->bw = sym_calloc (m + 2, sizeof (double));
-  c->A = sym_calloc (nn * nn * m, sizeof (double));
+  const size_t na = stages ? 1 : nn * nn * m;   /* node Jacobians */
+  c->A = sym_calloc (na, sizeof (double));
   c->Y = sym_calloc (nn * m, sizeof (double));
   c->F = sym_calloc (nn * m, sizeof (double));
   c->tj = sym_calloc (m, sizeof (double));
   c->xf = sym_calloc (c->N, sizeof (double));
   c->Fo = sym_calloc (nn * m, sizeof (double));
   c->xfo = sym_calloc (c->N, sizeof (double));
-  c->wk = sym_calloc (nn, sizeof (double));
-  c->Ae[0] = sym_calloc (nn * nn * m, sizeof (double));
-  c->Ae[1] = sym_calloc (nn * nn * m, sizeof (double));
+  c->wk = sym_calloc (nn + d, sizeof (double));
+  c->Ae[0] = sym_calloc (na, sizeof (double));
+  c->Ae[1] = sym_calloc (na, sizeof (double));
   c->x = sym_calloc (c->N, sizeof (double));
   c->scale = sym_calloc (c->N, sizeof (double));
   c->x0 = sym_calloc (c->N, sizeof (double));
@@ -62,7 +64,8 @@ spvi_core_init (spvi_core *c, int d, int n, int m)
       || ! c->xf || ! c->x || ! c->scale || ! c->x0 || ! l || ! c->Fo
       || ! c->xfo || ! c->wk || ! c->Ae[0] || ! c->Ae[1])
     goto fail;
-  if ((st = sym_newton_init (&c->nw, c->N, NULL)))
+  if ((st = sym_newton_init (&c->nw, c->N, NULL))
+      || (! stages && (st = sym_newton_lu (&c->nw))))
     goto fail;
   if ((st = sym_gauss_legendre (m, c->z, c->w)))
     goto fail;
@@ -83,6 +86,8 @@ spvi_core_init (spvi_core *c, int d, int n, int m)
     c->xb[j + 1] = c->z[j];
   c->xb[m + 1] = 1.0;
   sym_bary_weights (m + 2, c->xb, c->bw);
+  if (stages && (st = spvi_stages_init (c, stages == SPVI_STAGES_SPARSE)))
+    goto fail;
   sym_free (l);
   return SYM_SUCCESS;
 
@@ -205,7 +210,6 @@ spvi_end (spvi_core *c, double *yend)
   const double *a = c->x, *P = c->x + (size_t) (n - 1) * d;
   for (int j = 0; j < m; j++)
     {
-      const double *Aj = spvi_A (c, j);
       double *Fj = c->F + (size_t) j * nn;
       double *dy = c->Y + (size_t) j * nn;      /* work */
       for (int k = 0; k < d; k++)
@@ -218,13 +222,9 @@ spvi_end (spvi_core *c, double *yend)
           dy[d + k] = P[(size_t) j * d + k]
                       - c->xf[(size_t) (n - 1) * d + (size_t) j * d + k];
         }
+      spvi_jac_p (c, j, dy, c->wk);
       for (int k = 0; k < d; k++)
-        {
-          double v = 0.0;
-          for (int l = 0; l < d; l++)
-            v += APQ (Aj, k, l) * dy[l] + APP (Aj, k, l) * dy[d + l];
-          Fj[d + k] += v;
-        }
+        Fj[d + k] += c->wk[k];
     }
   c->fvalid = 0;   /* F no longer matches xf */
 

@@ -175,6 +175,8 @@ interp_A (spvi_core *c, int np, const double *xs, const double *bw,
 static int
 refactor (spvi_core *c, sym_eval *ev)
 {
+  if (sym_newton_lu (&c->nw))
+    return 0;
   fill (c, c->nw.lu.a);
   if (sym_lu_factor (&c->nw.lu, &ev->st.cnt))
     {

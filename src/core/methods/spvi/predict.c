@@ -249,7 +249,12 @@ start_scale (spvi_state *s, const double *y, double h, int adaptive)
   spvi_scale S;
   S.all = fmax (sq, sp) > 0 ? fmax (sq, sp) : 1.0;
   if (s->lo.nae > 0 && ! s->lo.noise_ok)
-    carried_noise (&s->lo, qa, pa);
+    {
+      if (s->lo.sg)
+        spvi_stages_noise (&s->lo, qa, pa);
+      else
+        carried_noise (&s->lo, qa, pa);
+    }
   if (s->lo.nae > 0)
     {
       sq = fmax (sq, fabs (h) * s->lo.noise_q);

@@ -62,13 +62,12 @@ move_error (spvi_core *c, double S)
         continue;
       if (! c->fovalid || n1 == 0.0)
         return INFINITY;
-      const double *Aj = c->A + (size_t) j * nn * nn;
+      double *jdy = dy + nn;
+      spvi_jac_p (c, j, dy, jdy);
       for (int k = 0; k < d; k++)
         {
           double v = c->F[(size_t) j * nn + d + k]
-                     - c->Fo[(size_t) j * nn + d + k];
-          for (size_t l = 0; l < nn; l++)
-            v -= Aj[(d + k) + l * nn] * dy[l];
+                     - c->Fo[(size_t) j * nn + d + k] - jdy[k];
           mis = fmax (mis, fabs (v));
         }
       e += c->w[j] * mis * (n2 / n1);
@@ -106,7 +105,9 @@ prepare_matrix (spvi_core *c, sym_eval *ev, const spvi_state *s, double h)
           && ! (fabs (h - c->h_kq) <= SYM_REBUILD_H * fabs (c->h_kq)))
         c->nw.kq_ok = 0;
     }
-  if (fast && c->nw.have_matrix)
+  if (c->sg)
+    ;   /* no node Jacobians to extrapolate or borrow */
+  else if (fast && c->nw.have_matrix)
     spvi_extrapolate (c, ev);
   else if (fast && ! method)
     spvi_borrow (c, &s->lo, ev);
@@ -160,7 +161,7 @@ refresh_policy (spvi_core *c, const sym_eval *ev)
       && ! (c->ndx >= 2 && c->dxn[1] <= SYM_SPVI_THETA_FRESH * c->dxn[0]))
     {
       c->extra += c->nw.iters - SYM_SPVI_REFRESH_ITERS;
-      const int cost = ev->jac || ev->rhs_jac ? 1 : 2 * c->d;
+      const int cost = sym_jac_cost (ev);
       if (c->extra >= cost)
         sym_newton_invalidate (&c->nw);
     }
@@ -186,7 +187,9 @@ spvi_solve (spvi_core *c, sym_eval *ev, double t, double h,
     c->scale[i] = i < (n - 1) * d ? S->q : S->p;
   c->nw.tol = fast ? tol : s->tol;
   c->nw.maxit = s->maxit;
-  sym_newton_problem prob = { spvi_residual, spvi_matrix, c };
+  sym_newton_problem prob = { spvi_residual, spvi_matrix, c,
+                              c->sg ? spvi_stages_factor : NULL,
+                              c->sg ? spvi_stages_solve : NULL };
   memcpy (c->x0, c->x, (size_t) N * sizeof (double));
   int st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &ev->st.cnt);
   if (every && c->nw.kq_new)

@@ -54,6 +54,10 @@ typedef struct {
   double q, p, all;
 } spvi_scale;
 
+/* Newton's systems by stage systems (staged.c) */
+typedef struct spvi_stages spvi_stages;
+enum { SPVI_FULL = 0, SPVI_STAGES = 1, SPVI_STAGES_SPARSE = 2 };
+
 /* One (n, m) discretization with its own Newton solver: the method, and
    (n + 1, m + 1) for the error estimate. */
 typedef struct {
@@ -64,7 +68,9 @@ typedef struct {
   double *wdl;         /* w_j l_i'(z_j) */
   double *g;           /* w_j (l_i(z_j) - 1) */
   double *xb, *bw;     /* -1, z_1..z_m, 1 and their barycentric weights */
-  double *A;           /* node Jacobians, (2d)^2 each, of the kept matrix */
+  double *A;           /* node Jacobians, (2d)^2 each, of the kept matrix
+                          (NULL with stages: their one J serves) */
+  spvi_stages *sg;     /* NULL: Newton's matrix in full, dense */
   double *Y, *F, *tj;  /* node states and f values (2d x m), node times */
   double *xf;          /* the x at which F was evaluated */
   int fvalid;
@@ -73,7 +79,7 @@ typedef struct {
   double dxn[2];       /* sizes of the first two corrections of a solve */
   int ndx;
   double *x, *scale, *x0;
-  double *wk;          /* 2d (work) */
+  double *wk;          /* 3d (work) */
   sym_newton nw;
   double h_mat;        /* h of the kept matrix */
   /* |Aqp| |p| and |Apq| |q| of the node Jacobians in A (see
@@ -131,6 +137,7 @@ typedef struct {
   double tol;
   int maxit;
   int newmat;          /* SYM_MATRIX_AUTO, _KEPT or _NEW */
+  int stages;          /* SPVI_FULL, _STAGES or _STAGES_SPARSE */
   int adaptive;        /* set_tolerances was called */
   double est_rtol, est_atol;   /* the adaptive tolerances (atol: the
                                   smallest) */
@@ -178,7 +185,8 @@ spvi_A (const spvi_core *c, int j)
 #define APP(A, k, l) (A)[(d + (k)) + (size_t) (d + (l)) * nn]
 
 /* ---------------------------------------------------------------- equations.c */
-int spvi_core_init (spvi_core *c, int d, int n, int m);
+/* stages: SPVI_FULL, SPVI_STAGES or SPVI_STAGES_SPARSE */
+int spvi_core_init (spvi_core *c, int d, int n, int m, int stages);
 void spvi_core_free (spvi_core *c);
 /* node states Y_j = [Q_j; P_j] from x */
 void spvi_states (spvi_core *c, const double *x);
@@ -202,6 +210,19 @@ int spvi_extrapolate (spvi_core *c, sym_eval *ev);
 /* the companion's matrix from the method's node Jacobians of the same
    step, interpolated to its nodes; 1 if made */
 int spvi_borrow (spvi_core *c, const spvi_core *src, sym_eval *ev);
+
+/* ---------------------------------------------------------------- staged.c */
+/* c->sg for the pair of c (SYM_EBADINPUT: not a pair n - 1 = m) */
+int spvi_stages_init (spvi_core *c, int sparse);
+void spvi_stages_free (spvi_core *c);
+/* sym_newton_problem's factor and solve */
+int spvi_stages_factor (void *ctx, const double *x, sym_counters *cnt);
+int spvi_stages_solve (void *ctx, double *b, sym_counters *cnt);
+/* out (d) = the p rows of node j's Jacobian (c->A, or the stages' J)
+   times dy (2d) */
+void spvi_jac_p (spvi_core *c, int j, const double *dy, double *out);
+/* c->noise_q, noise_p from the stages' J (see predict.c) */
+void spvi_stages_noise (spvi_core *c, const double *qa, const double *pa);
 
 /* ---------------------------------------------------------------- solve.c */
 /* Solve the step (t, h, yk) from the start c->x to tol (relative to the

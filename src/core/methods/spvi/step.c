@@ -109,12 +109,18 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
   const int m = own && own->nodes ? own->nodes : SYM_SPVI_NODES;
   const int n = own && own->q_dofs ? own->q_dofs : m + 1;
   const int newmat = own ? own->newton_matrix : SYM_MATRIX_AUTO;
+  const int system = own ? own->system : SYM_SYSTEM_AUTO;
+  const int sparse = own && own->sparse;
   /* n > 2m: the quadrature cannot see the top modes and the iteration
      does not converge; also n < 2 (no motion) */
   if (dim < 1 || n < 2 || m < 1 || n > 2 * m || m > SYM_SPVI_MAX_NODES
       || (opts && (opts->newton_tol < 0 || opts->max_newton < 0
                    || ! (opts->newton_tol < 1.0)))
-      || newmat < SYM_MATRIX_AUTO || newmat > SYM_MATRIX_NEW)
+      || newmat < SYM_MATRIX_AUTO || newmat > SYM_MATRIX_NEW
+      || system < SYM_SYSTEM_AUTO || system > SYM_SYSTEM_STAGES
+      /* stages need a pair n - 1 = m; a sparse Df needs stages */
+      || (n - 1 != m && (system == SYM_SYSTEM_STAGES || sparse))
+      || (sparse && system == SYM_SYSTEM_FULL))
     {
       *status = SYM_EBADINPUT;
       return NULL;
@@ -135,7 +141,13 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
   s->maxit = opts && opts->max_newton > 0 ? opts->max_newton
              : SYM_NEWTON_MAXIT;
   s->newmat = newmat;
-  int st = spvi_core_init (&s->lo, d, n, m);
+  if (sparse)
+    s->stages = SPVI_STAGES_SPARSE;
+  else if (system == SYM_SYSTEM_STAGES
+           || (system == SYM_SYSTEM_AUTO && n - 1 == m
+               && (size_t) (n - 1 + m) * d > SYM_SPVI_STAGES_N))
+    s->stages = SPVI_STAGES;
+  int st = spvi_core_init (&s->lo, d, n, m, s->stages);
   if (! st)
     st = rec_init (&s->rec[0], d, n, m);
   if (! st)
@@ -293,7 +305,7 @@ spvi_step (void *state, sym_eval *ev, double t, double h, double tend,
     return SYM_EBADINPUT;
   if (yerr && ! s->have_hi)
     {
-      int st = spvi_core_init (&s->hi, d, n + 1, m + 1);
+      int st = spvi_core_init (&s->hi, d, n + 1, m + 1, s->stages);
       if (st)
         return st;
       s->have_hi = 1;
@@ -402,7 +414,7 @@ spvi_set_tolerances (void *state, const sym_tolerances *tol)
     s->est_atol = fmin (s->est_atol, tol->atol[i]);
   if (! s->have_hi)
     {
-      int st = spvi_core_init (&s->hi, s->d, s->n + 1, s->m + 1);
+      int st = spvi_core_init (&s->hi, s->d, s->n + 1, s->m + 1, s->stages);
       if (st)
         return st;
       s->have_hi = 1;
