@@ -334,6 +334,8 @@ symmex_cb_jac (double t, const double *y, double *df, void *user)
   int n = c->n;
   if (c->jac_source == JAC_MATRIX)
     {
+      if (! c->jac_const)
+        c->jac_const = mxGetPr (symmex_full (c->o->jacobian));
       memcpy (df, c->jac_const, sizeof (double) * n * n);
       return 0;
     }
@@ -363,6 +365,108 @@ symmex_cb_jac (double t, const double *y, double *df, void *user)
   else
     take_hessian (c, out, t, df);
   mxDestroyArray (out[0]);
+  return 0;
+}
+
+/* ------------------------------------------------------------ sparse Df */
+
+/* A matrix a (n-by-n, sparse or full; its entries that are not zero)
+   into df: as it is (a Jacobian), or Df = J * a for a Hessian: the p
+   rows of a, then minus its q rows, in each column */
+static void
+to_csc (const mxArray *a, int n, int hess, sym_csc *df)
+{
+  const int d = n / 2, sp = mxIsSparse (a);
+  const mwIndex *jc = sp ? mxGetJc (a) : NULL, *ir = sp ? mxGetIr (a) : NULL;
+  const double *v = mxGetPr (a);
+  size_t cap = sp ? jc[n] : 0;
+  if (! sp)
+    for (size_t i = 0; i < (size_t) n * n; i++)
+      cap += v[i] != 0.0;
+  if (sym_csc_reserve (df, (int) cap))
+    mexErrMsgIdAndTxt ("symplectic:nomem", "out of memory for a sparse "
+                       "Jacobian of %zu entries", cap);
+  df->n = n;
+  int e = 0;
+  for (int j = 0; j < n; j++)
+    {
+      const size_t q0 = sp ? jc[j] : (size_t) j * n;
+      const size_t q1 = sp ? jc[j + 1] : (size_t) (j + 1) * n;
+      df->colptr[j] = e;
+      /* a Hessian's p rows come first (they become Df's q rows) */
+      for (int pass = hess ? 0 : 1; pass < 2; pass++)
+        for (size_t q = q0; q < q1; q++)
+          {
+            const int r = sp ? (int) ir[q] : (int) (q - q0);
+            if ((! sp && v[q] == 0.0) || (hess && (pass == 0) != (r >= d)))
+              continue;
+            df->rowind[e] = hess ? (r >= d ? r - d : r + d) : r;
+            df->val[e++] = hess && r < d ? -v[q] : v[q];
+          }
+    }
+  df->colptr[n] = df->nnz = e;
+}
+
+/* The sparse Df of the user's function's value in out[0], checked as in
+   symmex_cb_jac (its size and type; what: its name for messages) */
+static void
+take_sparse (symmex_ctx *c, mxArray **out, double t, int hess,
+             const char *what, sym_csc *df)
+{
+  const int n = c->n;
+  const mxArray *a = out[0];
+  if (! a || ! mxIsSparse (a) || mxIsComplex (a) || ! mxIsDouble (a)
+      || ! symmex_is_size (a, n, n))
+    {
+      /* anything else as the dense path takes it (and refuses it) */
+      if (hess && ! symmex_hessian_shape (a, n))
+        symmex_checked (c, out, (size_t) -1, what, 0, t, SYMMEX_HESS_EXPECT,
+                        n, n, n * n);
+      symmex_checked (c, out, (size_t) n * n, what, 0, t, hess
+                      ? SYMMEX_HESS_EXPECT : "a %dx%d real matrix (df/dy)",
+                      n, n, n * n);
+    }
+  to_csc (out[0], n, hess, df);
+  note_nonfinite (c, df->val, df->nnz, what, t);
+}
+
+int
+symmex_cb_jac_csc (double t, const double *y, sym_csc *df, void *user)
+{
+  symmex_ctx *c = user;
+  if (c->jac_source == JAC_MATRIX)
+    {
+      to_csc (c->o->jacobian, c->n, 0, df);
+      return 0;
+    }
+  mxGetPr (c->jargs[1])[0] = t;
+  memcpy (mxGetPr (c->jargs[2]), y, sizeof (double) * c->n);
+  mxArray *out[2] = { NULL, NULL };
+  if (c->jac_source == JAC_FCN2)
+    {
+      symmex_call (2, out, c->nargs, c->jargs, c->jname);
+      mxDestroyArray (out[0]);
+      out[0] = out[1];
+    }
+  else
+    symmex_call (1, out, c->nargs, c->jargs, c->jname);
+  const int hess = c->jac_source != JAC_FCN;
+  take_sparse (c, out, t, hess, c->jac_source == JAC_FCN
+               ? "the Jacobian function" : c->jac_source == JAC_FCN2
+               ? "FCN (second output)" : "HamiltonianHessFcn", df);
+  mxDestroyArray (out[0]);
+  return 0;
+}
+
+int
+symmex_cb_rhs_jac_csc (double t, const double *y, double *dy, sym_csc *df,
+                       void *user)
+{
+  symmex_ctx *c = user;
+  mxArray *out[2] = { NULL, NULL };
+  call_fcn (c, t, y, 2, out, dy);
+  take_sparse (c, &out[1], t, 1, "FCN (second output)", df);
+  mxDestroyArray (out[1]);
   return 0;
 }
 

@@ -98,6 +98,12 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   symmex_ctx *c = symmex_problem (name, &a, &o, m->needs_newton (own),
                                   m->second_order && m->second_order (own),
                                   nlhs, &sys);
+  if (m->needs_newton (own) && m->take_sparse && m->take_sparse (own, 0)
+      && symmex_sparse_source (c, &a))
+    {
+      m->take_sparse (own, 1);
+      symmex_use_sparse (c, &sys);
+    }
   sym_method_opts mo;
   memset (&mo, 0, sizeof mo);
   mo.newton_tol = o.newton_tol;
@@ -119,6 +125,7 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   /* the probe of FCN at (t0, y0), and of its Vectorized form */
   st.cnt.nrhs += c->probe_calls;
   st.cnt.nrhs_states += c->probe_states;
+  st.cnt.njac += c->probe_jac;
 
   if (o.outputfcn)
     symmex_outputfcn (c, NULL, 0, NULL, "done");

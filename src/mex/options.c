@@ -31,8 +31,9 @@ name_eq (const char *a, const char *b)
 
 /* The non-empty field whose name matches (any case); two of them (a
    struct with Nodes and nodes both set) are an error: which to take? */
-const mxArray *
-symmex_field (const char *solver, const mxArray *s, const char *name)
+/* the field's value as given (sparse kept) */
+static const mxArray *
+field_as_given (const char *solver, const mxArray *s, const char *name)
 {
   if (! s)
     return NULL;
@@ -52,6 +53,13 @@ symmex_field (const char *solver, const mxArray *s, const char *name)
         found = i;
         v = vi;
       }
+  return v;
+}
+
+const mxArray *
+symmex_field (const char *solver, const mxArray *s, const char *name)
+{
+  const mxArray *v = field_as_given (solver, s, name);
   return v ? symmex_full (v) : NULL;
 }
 
@@ -237,7 +245,9 @@ parse_jacobian (const char *solver, const mxArray *v, int n)
   if (! mxIsDouble (v))
     v = symmex_to_double (v);
   const double *jv = mxGetPr (v);
-  for (size_t i = 0; i < (size_t) n * n; i++)
+  /* a sparse one: its stored entries */
+  const size_t nv = mxIsSparse (v) ? mxGetJc (v)[n] : (size_t) n * n;
+  for (size_t i = 0; i < nv; i++)
     if (! isfinite (jv[i]))
       mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the Jacobian matrix must be "
                          "finite, element %d is %s", solver, (int) i + 1,
@@ -284,6 +294,7 @@ parse_jpattern (const char *solver, const mxArray *v, int n, symmex_opts *o)
     }
   o->jp_colptr = cp;
   o->jp_rowind = ri;
+  o->jp_sparse = mxIsSparse (v);
   o->jp_color = mxMalloc ((size_t) n * sizeof (int));
   o->jp_ncolors = sym_pattern_colors (n, cp, ri, o->jp_color);
   if (o->jp_ncolors < 1)
@@ -343,9 +354,10 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
              ? symmex_on_off (solver, v, "Stats") : 0;
   o->vectorized = (v = symmex_field (solver, opts, "Vectorized"))
                   ? symmex_on_off (solver, v, "Vectorized") : 0;
-  if ((v = symmex_field (solver, opts, "Jacobian")))
+  /* these two may be sparse: they then make sparse Newton matrices */
+  if ((v = field_as_given (solver, opts, "Jacobian")))
     o->jacobian = parse_jacobian (solver, v, n);
-  if ((v = symmex_field (solver, opts, "JPattern")))
+  if ((v = field_as_given (solver, opts, "JPattern")))
     parse_jpattern (solver, v, n, o);
   o->hessfcn = function_opt (solver, opts, "HamiltonianHessFcn");
   o->hamiltonian = function_opt (solver, opts, "Hamiltonian");

@@ -141,7 +141,11 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
   if (c->o->vectorized)
     check_vectorized (c, a, f0);
   mxFree (f0);
-  if (have2)
+  /* a sparse Hessian of the right size and type is not made full here
+     (at large d it could not be) */
+  c->fcn2_sparse = have2 && mxIsSparse (out[1]) && mxIsDouble (out[1])
+                   && ! mxIsComplex (out[1]) && symmex_is_size (out[1], n, n);
+  if (have2 && ! c->fcn2_sparse)
     symmex_checked (c, &out[1], symmex_hessian_shape (out[1], n)
                     ? (size_t) n * n : (size_t) -1, "FCN (second output)",
                     0, a->tspan[0], SYMMEX_HESS_EXPECT, n, n, n * n);
@@ -157,7 +161,8 @@ jacobian_source (symmex_ctx *c, const symmex_opts *o, int have2)
   if (o->jacobian && ! symmex_is_function (o->jacobian))
     {
       c->jac_source = JAC_MATRIX;
-      c->jac_const = mxGetPr (o->jacobian);
+      /* (made full only if the dense path takes it: symmex_cb_jac) */
+      c->jac_const = NULL;
     }
   else if (o->jacobian)
     c->jac_source = JAC_FCN;
@@ -279,4 +284,45 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
   sys->jp_color = o->jp_color;
   sys->jp_ncolors = o->jp_ncolors;
   return c;
+}
+
+int
+symmex_sparse_source (symmex_ctx *c, const symmex_args *a)
+{
+  const symmex_opts *o = c->o;
+  switch (c->jac_source)
+    {
+    case JAC_MATRIX:
+      return mxIsSparse (o->jacobian);
+    case JAC_FCN2:
+      return c->fcn2_sparse;
+    case JAC_FD:
+      return o->jp_sparse && o->jp_ncolors > 0;
+    case JAC_FCN:
+    case JAC_HESSFCN:
+      {
+        mxGetPr (c->jargs[1])[0] = a->tspan[0];
+        memcpy (mxGetPr (c->jargs[2]), a->y0, sizeof (double) * c->n);
+        mxArray *out[1] = { NULL };
+        symmex_call (1, out, c->nargs, c->jargs, c->jname);
+        c->probe_jac = 1;
+        int sp = out[0] && mxIsSparse (out[0]);
+        mxDestroyArray (out[0]);
+        return sp;
+      }
+    default:
+      return 0;
+    }
+}
+
+void
+symmex_use_sparse (symmex_ctx *c, sym_system *sys)
+{
+  c->sparse = 1;
+  sys->sparse = 1;
+  sys->jac = NULL;
+  sys->rhs_jac = NULL;
+  sys->jac_csc = c->jac_source == JAC_FD ? NULL : symmex_cb_jac_csc;
+  sys->rhs_jac_csc = c->jac_source == JAC_FCN2 ? symmex_cb_rhs_jac_csc
+                     : NULL;
 }

@@ -48,6 +48,9 @@ typedef struct {
   /* why the method's step is not symmetric (StepControl "reversible"
      needs one), or NULL when it is */
   const char *(*asymmetric) (const void *own);
+  /* whether the method takes Df sparse (and, with commit, notes in own
+     that it will); NULL: never (a sparse Df is made full) */
+  int (*take_sparse) (void *own, int commit);
 } symmex_method;
 
 extern const symmex_method symmex_method_se;
@@ -104,6 +107,7 @@ typedef struct symmex_opts_s {
      none) */
   int *jp_colptr, *jp_rowind, *jp_color;
   int jp_ncolors;
+  int jp_sparse;              /* JPattern was a sparse matrix */
   const mxArray *hessfcn;     /* handle or NULL */
   double h_fixed;
   long nsteps_fixed;
@@ -170,6 +174,9 @@ typedef struct {
   /* the names the user's functions are called by, or "" (feval) */
   char fname[64], jname[64], ename[64], oname[64];
   long probe_calls, probe_states;  /* calls of FCN before the run */
+  long probe_jac;              /* calls of the Jacobian's source before it */
+  int fcn2_sparse;             /* the probe's second output was sparse */
+  int sparse;                  /* Df goes to the core sparse */
   int oom;                     /* an output buffer could not grow */
   const char *nonfinite_what;  /* which function last returned NaN/Inf */
   double nonfinite_t;          /* and at which t */
@@ -194,10 +201,23 @@ symmex_ctx *symmex_problem (const char *solver, const symmex_args *a,
                             symmex_opts *o, int need_jac, int second_order,
                             int nlhs, sym_system *sys);
 
+/* Whether Df comes sparse: a sparse Jacobian matrix, a sparse value of
+   the Jacobian's function or the Hessian's at (t0, y0) (that call is
+   made here, counted in c->probe_jac), or finite differences on a sparse
+   JPattern */
+int symmex_sparse_source (symmex_ctx *c, const symmex_args *a);
+/* the core's system takes Df sparse from then on */
+void symmex_use_sparse (symmex_ctx *c, sym_system *sys);
+
 /* callbacks.c: the core's callbacks (user: the symmex_ctx) */
 int symmex_cb_rhs (double t, const double *y, double *dy, void *user);
 int symmex_cb_rhs_batch (int k, const double *t, const double *y,
                          double *dy, void *user);
+/* Df sparse (sym_system.sparse): the Jacobian or Hessian as the user's
+   function returns it, full or sparse, its entries that are not zero */
+int symmex_cb_jac_csc (double t, const double *y, sym_csc *df, void *user);
+int symmex_cb_rhs_jac_csc (double t, const double *y, double *dy,
+                           sym_csc *df, void *user);
 int symmex_cb_jac (double t, const double *y, double *df, void *user);
 int symmex_cb_rhs_jac (double t, const double *y, double *dy, double *df,
                        void *user);

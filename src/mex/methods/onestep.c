@@ -46,3 +46,14 @@ symmex_onestep_second_order (const void *own)
   const sym_onestep_opts *o = own;
   return o->second_order;
 }
+
+int
+symmex_onestep_take_sparse (void *own, int commit)
+{
+  sym_onestep_opts *o = own;
+  const int ok = ! o->separable && ! o->second_order && o->method == 0
+                 && ! o->compensated;
+  if (ok && commit)
+    o->sparse = 1;
+  return ok;
+}

@@ -12,5 +12,8 @@ void symmex_onestep_parse (const char *solver, const mxArray *opts,
                            void *own);
 int symmex_onestep_needs_newton (const void *own);
 int symmex_onestep_second_order (const void *own);
+/* the implicit steps of Stoermer-Verlet and symplectic Euler take a
+   sparse Df (the compositions of Method, and explicit steps, do not) */
+int symmex_onestep_take_sparse (void *own, int commit);
 
 #endif

@@ -15,5 +15,5 @@ const symmex_method symmex_method_se = {
   "odeSE", &sym_step_se, sizeof (sym_onestep_opts), symmex_onestep_parse,
   symmex_onestep_options, symmex_onestep_needs_newton, NULL, NULL,
   "dH/dq changed with p at the same q", NULL, symmex_onestep_second_order,
-  se_asymmetric
+  se_asymmetric, symmex_onestep_take_sparse
 };

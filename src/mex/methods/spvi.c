@@ -4,11 +4,13 @@
 /* spvi.c -- odeSPVI: the spectral variational integrator (core:
    methods/spvi/).  Its own options: Q_DoFs (modes of q), Nodes (alias
    P_DoFs), odepkg's PolynomialDegree (Q_DoFs = degree + 1, and Nodes
-   unless given), NewtonMatrix; sol gains the order used and the pair. */
+   unless given), NewtonMatrix, NewtonSystem; sol gains the order used
+   and the pair. */
 #include "../symmex.h"
 
 static const char *const spvi_options[] = {
-  "Q_DoFs", "Nodes", "P_DoFs", "PolynomialDegree", "NewtonMatrix", NULL
+  "Q_DoFs", "Nodes", "P_DoFs", "PolynomialDegree", "NewtonMatrix",
+  "NewtonSystem", NULL
 };
 
 /* Nodes and its alias, Q_DoFs and PolynomialDegree: two names of one
@@ -58,6 +60,27 @@ spvi_parse (const char *solver, const mxArray *opts, void *own)
   const int k = v ? symmex_word (solver, v, "NewtonMatrix", matrix) : 0;
   o->newton_matrix = k == 1 ? SYM_MATRIX_KEPT : k == 2 ? SYM_MATRIX_NEW
                      : SYM_MATRIX_AUTO;
+  static const char *const system[] = { "auto", "full", "stages", NULL };
+  v = symmex_field (solver, opts, "NewtonSystem");
+  const int ks = v ? symmex_word (solver, v, "NewtonSystem", system) : 0;
+  o->system = ks == 1 ? SYM_SYSTEM_FULL : ks == 2 ? SYM_SYSTEM_STAGES
+              : SYM_SYSTEM_AUTO;
+  if (o->system == SYM_SYSTEM_STAGES && o->q_dofs != o->nodes + 1)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: NewtonSystem \"stages\" needs "
+                       "Q_DoFs = Nodes + 1, got Q_DoFs = %d with Nodes = %d",
+                       solver, o->q_dofs, o->nodes);
+}
+
+/* a sparse Df goes by stages: the pairs Q_DoFs = Nodes + 1 unless
+   NewtonSystem is "full" (the others make it full) */
+static int
+spvi_take_sparse (void *own, int commit)
+{
+  sym_spvi_opts *o = own;
+  const int ok = o->q_dofs == o->nodes + 1 && o->system != SYM_SYSTEM_FULL;
+  if (ok && commit)
+    o->sparse = 1;
+  return ok;
 }
 
 static int
@@ -104,5 +127,5 @@ spvi_asymmetric (const void *own)
 const symmex_method symmex_method_spvi = {
   "odeSPVI", &sym_step_spvi, sizeof (sym_spvi_opts), spvi_parse,
   spvi_options, spvi_needs_newton, spvi_sol_fields, spvi_newton_hint, NULL,
-  NULL, NULL, spvi_asymmetric
+  NULL, NULL, spvi_asymmetric, spvi_take_sparse
 };
