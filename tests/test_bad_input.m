@@ -239,7 +239,7 @@
 
 ## ------------------------------------------------------------ Jacobian and Hessian
 %!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be a function handle or a real 2x2 matrix \\(df/dy\\), got 3x3 double", f, [0 1], y0, struct ("Jacobian", ones (3)));
-%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 3x3 double", f, [0 1], y0, struct ("Jacobian", speye (3)));
+%!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 3x3 sparse double", f, [0 1], y0, struct ("Jacobian", speye (3)));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 2x2 complex double", f, [0 1], y0, struct ("Jacobian", 1i * eye (2)));
 %!test check_bad (all3, "Octave:invalid-input-arg", "Jacobian must be .*got 1x22 char", f, [0 1], y0, struct ("Jacobian", "no_such_function_xyz_2"));
 %!test check_bad (all3, "Octave:invalid-input-arg", "the Jacobian matrix must be finite, element 4 is NaN", f, [0 1], y0, struct ("Jacobian", [0 1; -1 NaN]));

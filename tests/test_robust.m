@@ -170,10 +170,11 @@
 
 %!test
 %! ## a workspace that cannot be had: Newton's matrix of odeSPVI with 40
-%! ## nodes at d = 2000 (205 GB) is an error naming the solver and the
-%! ## size, before any step
+%! ## nodes at d = 2000 (205 GB), as one system, is an error naming the
+%! ## solver and the size, before any step
 %! d = 2000;
-%! o = symplecticset ("TimeStepSize", 0.05, "Nodes", 40);
+%! o = symplecticset ("TimeStepSize", 0.05, "Nodes", 40,
+%!                    "NewtonSystem", "full");
 %! try
 %!   odeSPVI (@(t, y) [y(d+1:end); -y(1:d)], [0 0.1], ones (2*d, 1), o);
 %!   error ("no error");

@@ -185,12 +185,14 @@
 %! o = symplecticset ("TimeStepSize", 2*pi/100);
 %! s2 = odeSPVI (@kepler, [0 4*pi], y0, o);
 %! s3 = odeSPVI (@kepler1, [0 4*pi], y0, symplecticset (o, "HamiltonianHessFcn", @kepler_hess));
+%! ## (HamiltonianHessFcn is also called once at (t0, y0), to see whether
+%! ## it returns a sparse matrix)
 %! assert (s2.y, s3.y);
-%! assert (s2.stats.npds, s3.stats.npds);
-%! assert (s3.stats.npds > 0);
+%! assert (s2.stats.npds, s3.stats.npds - 1);
+%! assert (s3.stats.npds > 1);
 %! assert (s2.stats.nfdevals, 1);
 %! assert (s3.stats.nfdevals, 2);
-%! assert (s2.stats.nfevals, s3.stats.nfevals - s3.stats.npds - 1);
+%! assert (s2.stats.nfevals, s3.stats.nfevals - (s3.stats.npds - 1) - 1);
 %! ## NewtonMatrix "new": every step takes a new matrix at its start (3
 %! ## calls, whose f the residual there reuses), its first Newton
 %! ## correction exact and often the last; the steps agree to round-off,
