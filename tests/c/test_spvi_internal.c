@@ -153,7 +153,7 @@ scenario_predictor_exact (void)
     {
       st |= T->step (s, &ev, t, hs[k], t + hs[k], y, yn, NULL);
       if (k > 0)
-        worst_pred = fmax (worst_pred, ts_maxdiff (s->lo.N, s->lo.x0,
+        worst_pred = fmax (worst_pred, ts_maxdiff (s->lo.N, s->lo.nw.x0,
                                                    s->lo.x));
       T->accept (s);
       t += hs[k];

@@ -404,6 +404,40 @@ test_alloc_failure (void)
   free (color);
 }
 
+/* a stepper allocated without want_dense keeps no dense output's data:
+   dense () refuses */
+static void
+test_no_dense (void)
+{
+  D = 3;
+  double y0[6], y1[6], yd[6];
+  start (y0);
+  sym_system sys;
+  memset (&sys, 0, sizeof sys);
+  sys.dim = D;
+  sys.rhs = fpu_rhs;
+  sym_eval ev;
+  sym_eval_init (&ev, &sys);
+  sym_spvi_opts so = { 4, 3, SYM_MATRIX_AUTO, SYM_SYSTEM_STAGES, 0 };
+  sym_method_opts mo;
+  memset (&mo, 0, sizeof mo);
+  mo.own = &so;
+  for (int want = 0; want < 2; want++)
+    {
+      mo.want_dense = want;
+      int st;
+      void *s = sym_step_spvi->alloc (D, &mo, &st);
+      CHECK (s && sym_step_spvi->step (s, &ev, 0.0, 0.1, 0.1, y0, y1, NULL)
+             == SYM_SUCCESS, "a step");
+      sym_step_spvi->accept (s);
+      st = sym_step_spvi->dense (s, &ev, 0.05, yd);
+      CHECK (st == (want ? SYM_SUCCESS : SYM_EBADINPUT), "dense (want %d): "
+             "%s", want, sym_status_name (st));
+      sym_step_spvi->free (s);
+    }
+  sym_eval_free (&ev);
+}
+
 int
 main (void)
 {
@@ -412,6 +446,7 @@ main (void)
   test_large ();
   test_refusals ();
   test_wrong_jac ();
+  test_no_dense ();
   test_alloc_failure ();
   return tu_finish ("test_spvi_stages");
 }

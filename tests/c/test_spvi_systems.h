@@ -298,6 +298,7 @@ ts_opts (sym_method_opts *o, sym_spvi_opts *so, int n, int m)
   so->q_dofs = n;
   so->nodes = m;
   o->own = so;
+  o->want_dense = 1;     /* the tests call dense () on the steps */
 }
 
 /* Switch a stepper to the steps of an adaptive run with RelTol rtol and

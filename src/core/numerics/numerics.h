@@ -121,7 +121,7 @@ typedef struct {
   int quad;
   double kq;
   int kq_ok, kq_age, one, kq_new;
-  double *r, *dx, *x0;   /* work */
+  double *r, *dx, *x0;   /* work; x0: the start of the last solve */
 } sym_newton;
 
 /* tolerance and iterations from opts (0: the defaults) */

@@ -98,7 +98,8 @@ spvi_dense (void *state, sym_eval *ev, double t, double *y)
   spvi_state *s = state;
   const int d = s->d;
   spvi_rec *r = s->cur;
-  if (! s->have_cur)
+  /* (no data for it without want_dense at alloc) */
+  if (! s->have_cur || ! r->D)
     return SYM_EBADINPUT;
   if (t == r->t)
     {

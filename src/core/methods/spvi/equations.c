@@ -17,7 +17,7 @@ spvi_core_free (spvi_core *c)
   spvi_stages_free (c);
   double **p[] = { &c->z, &c->w, &c->phi, &c->dl, &c->wdl, &c->g, &c->xb,
                    &c->bw, &c->A, &c->Y, &c->F, &c->tj, &c->xf, &c->x,
-                   &c->scale, &c->x0, &c->Fo, &c->xfo, &c->wk, &c->Ae[0],
+                   &c->scale, &c->Fo, &c->xfo, &c->wk, &c->Ae[0],
                    &c->Ae[1] };
   for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
     {
@@ -56,12 +56,11 @@ spvi_core_init (spvi_core *c, int d, int n, int m, int stages)
   c->Ae[1] = sym_calloc (na, sizeof (double));
   c->x = sym_calloc (c->N, sizeof (double));
   c->scale = sym_calloc (c->N, sizeof (double));
-  c->x0 = sym_calloc (c->N, sizeof (double));
   double *l = sym_calloc (2 * (size_t) n, sizeof (double));
   int st = SYM_ENOMEM;
   if (! c->z || ! c->w || ! c->phi || ! c->dl || ! c->wdl || ! c->g
       || ! c->xb || ! c->bw || ! c->A || ! c->Y || ! c->F || ! c->tj
-      || ! c->xf || ! c->x || ! c->scale || ! c->x0 || ! l || ! c->Fo
+      || ! c->xf || ! c->x || ! c->scale || ! l || ! c->Fo
       || ! c->xfo || ! c->wk || ! c->Ae[0] || ! c->Ae[1])
     goto fail;
   if ((st = sym_newton_init (&c->nw, c->N, NULL))

@@ -334,7 +334,7 @@ spvi_predict_history (spvi_state *s, double h)
 {
   const int N = s->lo.N;
   const spvi_rec *tr = s->trial;
-  memcpy (tr->xp, s->lo.x, (size_t) N * sizeof (double));
+  memcpy (s->xp, s->lo.x, (size_t) N * sizeof (double));
   if (s->n - 1 != s->m || ! tr->cont || s->nhist < 2
       || ! sym_same_step (h, s->hhist))
     return;

@@ -190,7 +190,6 @@ spvi_solve (spvi_core *c, sym_eval *ev, double t, double h,
   sym_newton_problem prob = { spvi_residual, spvi_matrix, c,
                               c->sg ? spvi_stages_factor : NULL,
                               c->sg ? spvi_stages_solve : NULL };
-  memcpy (c->x0, c->x, (size_t) N * sizeof (double));
   int st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &ev->st.cnt);
   if (every && c->nw.kq_new)
     c->h_kq = h;
@@ -200,7 +199,7 @@ spvi_solve (spvi_core *c, sym_eval *ev, double t, double h,
      potential's curvature is small */
   if (st == SYM_NEWTON_FAIL)
     {
-      memcpy (c->x, c->x0, (size_t) N * sizeof (double));
+      memcpy (c->x, c->nw.x0, (size_t) N * sizeof (double));
       c->nw.mode = SYM_NEWTON_FULL;
       st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &ev->st.cnt);
       c->nw.mode = SYM_NEWTON_SIMPLIFIED;

@@ -78,7 +78,7 @@ typedef struct {
   int fovalid;
   double dxn[2];       /* sizes of the first two corrections of a solve */
   int ndx;
-  double *x, *scale, *x0;
+  double *x, *scale;   /* (the start of a solve: nw.x0) */
   double *wk;          /* 3d (work) */
   sym_newton nw;
   double h_mat;        /* h of the kept matrix */
@@ -111,7 +111,6 @@ typedef struct {
   double *y0, *y1;     /* 2d each */
   double *a;           /* a_1..a_{n-1}: a[(i-1)*d + k] */
   double *P;           /* P[j*d + k] */
-  double *xp;          /* the polynomial prediction of x (predict.c) */
   double *dq;          /* d: end correction of q (adaptive), or zeros */
   int has_dq;
   int cont;            /* xp continued the step before, of the same h */
@@ -119,7 +118,8 @@ typedef struct {
      nodes of the solve the run advances with, +1, 2d each; the ends are
      h/2 f(t, y) there, evaluated when first needed (fe0, fe1: f itself),
      the nodes' from the solution */
-  double *D;           /* (m + 3) x 2d */
+  double *D;           /* (m + 3) x 2d; D, fe0 and emis only with dense
+                          output */
   double *fe0, *fe1;   /* 2d each */
   double *emis;        /* 2d: y1 - u(1), the end mismatch */
   int M, have_fe0, have_fe1, have_emis;
@@ -161,6 +161,8 @@ typedef struct {
      last nhist accepted steps, newest first, SYM_SPVI_HIST + 1 of N each;
      all continued steps of size hhist */
   double *dhist;
+  double *xp;          /* the trial's polynomial prediction of x
+                          (predict.c), for dhist when it is accepted */
   int nhist;
   double hhist;
   /* the largest sizes of q and of p in the steps solved so far */

@@ -45,7 +45,9 @@ struct spvi_stages {
      complements I - gamma^2 K, K = Jpq Jqp, of size d */
   int schur;
   double *K;
-  sym_csc Bs, Ks;               /* sparse: Jpq, and K */
+  sym_csc Bs, Ks;               /* sparse: Jpq, and K (unit_mass:
+                                   Jqp = I, K is Bs) */
+  int unit_mass;
   double *aq;                   /* sparse: Jqp's diagonal (d) */
   double *J;                    /* dense: (2d)^2 */
   sym_csc Js;                   /* sparse */
@@ -249,17 +251,19 @@ spvi_stages_init (spvi_core *c, int sparse)
     return SYM_ENOMEM;
   g->sparse = sparse;
   g->rq = sym_calloc (4 * mm, sizeof (double complex));
-  g->z = sym_calloc (nn * m, sizeof (double complex));
   g->wv = sym_calloc (nn, sizeof (double));
   g->J = sparse ? NULL : sym_calloc (nn * nn, sizeof (double));
-  if (! g->rq || ! g->z || ! g->wv || (! sparse && ! g->J)
+  if (! g->rq || ! g->wv || (! sparse && ! g->J)
       || (sparse && sym_csc_init (&g->Js, (int) nn, 0)))
     return SYM_ENOMEM;
   g->rp = g->rq + mm;
   g->bq = g->rq + 2 * mm;
   g->bp = g->rq + 3 * mm;
   int st = transforms (c, g);
-  return st == -1 ? SYM_EBADINPUT : st;
+  if (st)
+    return st == -1 ? SYM_EBADINPUT : st;
+  g->z = sym_calloc (nn * g->ns, sizeof (double complex));
+  return g->z ? SYM_SUCCESS : SYM_ENOMEM;
 }
 
 /* the stage LUs of size nlu (allocated when the size changes) */
@@ -293,6 +297,17 @@ schur_setup (spvi_stages *g, int d)
         return 0;
   if (! g->K && ! (g->K = sym_malloc ((size_t) d * d * sizeof (double))))
     return SYM_ENOMEM;
+  /* a unit mass, Jqp = I: K is Jpq, no product */
+  int unit = 1;
+  for (size_t j = 0; j < dd && unit; j++)
+    for (size_t i = 0; i < dd && unit; i++)
+      unit = g->J[i + (dd + j) * nn] == (i == j);
+  if (unit)
+    {
+      for (size_t j = 0; j < dd; j++)
+        memcpy (g->K + j * dd, g->J + dd + j * nn, dd * sizeof (double));
+      return 1;
+    }
   const double one = 1.0, zero = 0.0;
   const int ld = (int) nn;
   dgemm_ ("N", "N", &d, &d, &d, &one, g->J + d, &ld, g->J + nn * d, &ld,
@@ -318,18 +333,26 @@ schur_setup_sparse (spvi_stages *g, int d)
   if (! g->aq && ! (g->aq = sym_malloc ((size_t) d * sizeof (double))))
     return SYM_ENOMEM;
   if ((! g->Bs.colptr && sym_csc_init (&g->Bs, d, 0))
-      || (! g->Ks.colptr && sym_csc_init (&g->Ks, d, 0))
-      || sym_csc_block (J, d, 0, d, &g->Bs) || sym_csc_copy (&g->Ks, &g->Bs))
+      || sym_csc_block (J, d, 0, d, &g->Bs))
     return SYM_ENOMEM;
+  g->unit_mass = 1;
   for (int j = 0; j < d; j++)
     {
       g->aq[j] = 0.0;
       for (int e = J->colptr[d + j]; e < J->colptr[d + j + 1]; e++)
         if (J->rowind[e] == j)
           g->aq[j] = J->val[e];
-      for (int e = g->Ks.colptr[j]; e < g->Ks.colptr[j + 1]; e++)
-        g->Ks.val[e] *= g->aq[j];
+      g->unit_mass = g->unit_mass && g->aq[j] == 1.0;
     }
+  /* K = Jpq itself for a unit mass, else Jpq with its columns scaled */
+  if (g->unit_mass)
+    return 1;
+  if ((! g->Ks.colptr && sym_csc_init (&g->Ks, d, 0))
+      || sym_csc_copy (&g->Ks, &g->Bs))
+    return SYM_ENOMEM;
+  for (int j = 0; j < d; j++)
+    for (int e = g->Ks.colptr[j]; e < g->Ks.colptr[j + 1]; e++)
+      g->Ks.val[e] *= g->aq[j];
   return 1;
 }
 
@@ -384,7 +407,8 @@ spvi_stages_factor (void *ctx, const double *x, sym_counters *cnt)
       if ((st = sym_stage_lu_factor (&g->lu[i], creal (gam), cimag (gam),
                                      g->schur ? g->K : g->J,
                                      g->schur ? c->d : 2 * c->d,
-                                     g->schur ? &g->Ks : &g->Js,
+                                     ! g->schur ? &g->Js
+                                     : g->unit_mass ? &g->Bs : &g->Ks,
                                      cnt)))
         return st;
     }

@@ -16,32 +16,34 @@ rec_free (spvi_rec *r)
   sym_free (r->y1);
   sym_free (r->a);
   sym_free (r->P);
-  sym_free (r->xp);
   sym_free (r->dq);
   sym_free (r->D);
   sym_free (r->fe0);
   sym_free (r->fe1);
   sym_free (r->emis);
-  r->y0 = r->y1 = r->a = r->P = r->xp = r->dq = NULL;
+  r->y0 = r->y1 = r->a = r->P = r->dq = NULL;
   r->D = r->fe0 = r->fe1 = r->emis = NULL;
 }
 
+/* (dense: the dense output's data too, D, fe0 and emis) */
 static int
-rec_init (spvi_rec *r, int d, int n, int m)
+rec_init (spvi_rec *r, int d, int n, int m, int dense)
 {
   memset (r, 0, sizeof (*r));
   r->y0 = sym_calloc (2 * (size_t) d, sizeof (double));
   r->y1 = sym_calloc (2 * (size_t) d, sizeof (double));
   r->a = sym_calloc ((size_t) (n - 1) * d, sizeof (double));
   r->P = sym_calloc ((size_t) m * d, sizeof (double));
-  r->xp = sym_calloc ((size_t) (n - 1 + m) * d, sizeof (double));
   r->dq = sym_calloc ((size_t) d, sizeof (double));
-  r->D = sym_calloc ((size_t) (m + 3) * 2 * d, sizeof (double));
-  r->fe0 = sym_calloc (2 * (size_t) d, sizeof (double));
   r->fe1 = sym_calloc (2 * (size_t) d, sizeof (double));
-  r->emis = sym_calloc (2 * (size_t) d, sizeof (double));
-  if (! r->y0 || ! r->y1 || ! r->a || ! r->P || ! r->xp || ! r->dq
-      || ! r->D || ! r->fe0 || ! r->fe1 || ! r->emis)
+  if (dense)
+    {
+      r->D = sym_calloc ((size_t) (m + 3) * 2 * d, sizeof (double));
+      r->fe0 = sym_calloc (2 * (size_t) d, sizeof (double));
+      r->emis = sym_calloc (2 * (size_t) d, sizeof (double));
+    }
+  if (! r->y0 || ! r->y1 || ! r->a || ! r->P || ! r->dq || ! r->fe1
+      || (dense && (! r->D || ! r->fe0 || ! r->emis)))
     {
       rec_free (r);
       return SYM_ENOMEM;
@@ -73,6 +75,7 @@ spvi_free (void *state)
   sym_free (s->pw);
   sym_free (s->pc);
   sym_free (s->dhist);
+  sym_free (s->xp);
   sym_free (s);
 }
 
@@ -149,9 +152,9 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
     s->stages = SPVI_STAGES;
   int st = spvi_core_init (&s->lo, d, n, m, s->stages);
   if (! st)
-    st = rec_init (&s->rec[0], d, n, m);
+    st = rec_init (&s->rec[0], d, n, m, opts && opts->want_dense);
   if (! st)
-    st = rec_init (&s->rec[1], d, n, m);
+    st = rec_init (&s->rec[1], d, n, m, opts && opts->want_dense);
   if (! st)
     {
       s->xi = sym_calloc (n, sizeof (double));
@@ -169,10 +172,11 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
       s->ng = m / 2 + 2;
       s->gz = sym_calloc (s->ng, sizeof (double));
       s->gw = sym_calloc (s->ng, sizeof (double));
+      s->xp = sym_calloc (s->lo.N, sizeof (double));
       s->dhist = sym_calloc ((size_t) (SYM_SPVI_HIST + 1) * s->lo.N,
                              sizeof (double));
       if (! s->xi || ! s->vinv || ! s->f0 || ! s->lv || ! s->dlv || ! s->cb
-          || ! s->vq || ! s->dhist || ! s->gz || ! s->gw || ! s->ach
+          || ! s->vq || ! s->dhist || ! s->xp || ! s->gz || ! s->gw || ! s->ach
           || ! s->pz || ! s->pw || ! s->pc)
         st = SYM_ENOMEM;
       if (! st)
@@ -275,7 +279,7 @@ solve_companion (spvi_state *s, sym_eval *ev, double t, double h,
   int st = spvi_solve (c, ev, t, h, tr->y0, S, s, tol, yerr);
   if (st)
     return st;
-  if (n - 1 == m)
+  if (n - 1 == m && tr->D)
     spvi_rec_nodes (tr, c);
   for (int k = 0; k < d; k++)
     tr->dq[k] = yerr[k] - tr->y1[k];
@@ -335,7 +339,7 @@ spvi_step (void *state, sym_eval *ev, double t, double h, double tend,
   tr->M = 0;
   tr->have_fe0 = tr->have_fe1 = tr->have_emis = tr->ends_bad = 0;
   spvi_rec_noise (s, tr, tol_lo, &S);
-  if (n - 1 == m)
+  if (n - 1 == m && tr->D)
     spvi_rec_nodes (tr, &s->lo);
   if (yerr && (st = solve_companion (s, ev, t, h, tol_hi, &S, yerr)))
     return st;
@@ -360,9 +364,9 @@ spvi_accept (void *state)
       memmove (s->dhist + N, s->dhist,
                (size_t) SYM_SPVI_HIST * N * sizeof (double));
       for (int i = 0; i < na; i++)
-        s->dhist[i] = tr->a[i] - tr->xp[i];
+        s->dhist[i] = tr->a[i] - s->xp[i];
       for (int i = na; i < N; i++)
-        s->dhist[i] = tr->P[i - na] - tr->xp[i];
+        s->dhist[i] = tr->P[i - na] - s->xp[i];
       if (s->nhist <= SYM_SPVI_HIST)
         s->nhist++;
       s->hhist = tr->h;
@@ -372,7 +376,7 @@ spvi_accept (void *state)
   /* f at the end of the last step, if the dense output evaluated it, is
      f at the start of this one */
   spvi_rec *cu = s->cur, *tw = s->trial;
-  if (s->have_cur && cu->have_fe1 && cu->tend == tw->t
+  if (s->have_cur && tw->fe0 && cu->have_fe1 && cu->tend == tw->t
       && memcmp (cu->y1, tw->y0, 2 * (size_t) s->d * sizeof (double)) == 0)
     {
       memcpy (tw->fe0, cu->fe1, 2 * (size_t) s->d * sizeof (double));
