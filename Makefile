@@ -17,8 +17,9 @@
 #   make check-installed  pkg install the tarball as a non-root user, then
 #                       pkg test and demo odeSPVI (tests/check_installed.sh)
 #   make bench          deps and all, then bench/run_benchmarks.m (RESULTS.md),
-#                       bench/run_methods.m (METHODS.md, methods-*.png) and
-#                       bench/run_reversible.m (REVERSIBLE.md, its PNG)
+#                       bench/run_methods.m (METHODS.md, methods-*.png),
+#                       bench/run_reversible.m (REVERSIBLE.md, its PNG) and
+#                       bench/run_large.m (LARGE.md)
 #   make clean
 #
 # src/Makefile builds the compiled gateways __odeSE__.mex etc. in src/;
@@ -111,6 +112,7 @@ bench: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_benchmarks.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_methods.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_reversible.m
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_large.m
 
 # Stage a clean copy (no build products) and pack it as DISTNAME/.  In a
 # git checkout only the files git tracks are packed (as they are in the

@@ -84,11 +84,14 @@
 ## @var{fcn} each.  Default @qcode{"off"}.
 ## @item Jacobian, HamiltonianHessFcn
 ## Sources of Newton's matrix (above); @code{sol.stats.jacobian_source}
-## says which one served.
+## says which one served.  A sparse one keeps the implicit solves
+## sparse; the one call of the function at (t0, y0) that tells is
+## counted in @code{npds}.
 ## @item JPattern
 ## The nonzero pattern of df/dy (2d-by-2d, sparse or full): finite
 ## differences then step the columns that share no row together, a few
-## calls of @var{fcn} for a banded system instead of 2d.
+## calls of @var{fcn} for a banded system instead of 2d.  Given as a
+## sparse matrix, the matrices it makes are sparse too.
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's relative tolerance (1e-14; fixed steps converge to
 ## NewtonTol/1000) and iterations per solve (10).

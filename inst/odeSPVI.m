@@ -75,16 +75,31 @@
 ## @code{HamiltonianHessFcn} (a handle returning the Hessian), the second
 ## output of @var{fcn}, finite differences of @var{fcn}.
 ## @code{sol.stats.jacobian_source} says which one served.
+## A sparse Hessian or Jacobian is used sparse (see NewtonSystem); the
+## one call of the function at (t0, y0) that tells is counted in
+## @code{npds}.
 ## @item JPattern
 ## The nonzero pattern of df/dy (2d-by-2d, sparse or full): finite
 ## differences then step the columns that share no row together, a few
-## calls of @var{fcn} for a banded system instead of 2d per node.
+## calls of @var{fcn} for a banded system instead of 2d per node.  Given
+## as a sparse matrix, the matrices it makes are sparse too.
 ## @item NewtonMatrix
 ## @qcode{"kept"}: Newton's matrix and its LU are kept across steps while
 ## Newton converges fast; @qcode{"new"}: a new one at every step (fewer
 ## calls of @var{fcn}, but Hessians on every step).  Default
 ## @qcode{"auto"}: @qcode{"new"} for Vectorized finite differences of at
 ## most 64 unknowns, else @qcode{"kept"}.
+## @item NewtonSystem
+## @qcode{"stages"}: Newton's system of (Q_DoFs-1+Nodes)*d unknowns is
+## reduced, with one Jacobian for all nodes, to ceil(Nodes/2) systems of
+## size 2d (one real, the others complex), or of size d when the Hessian
+## is full and H separable; a sparse Hessian or Jacobian keeps them
+## sparse (KLU), so that memory and time grow linearly with d for a
+## banded one.  Pairs Q_DoFs = Nodes+1 only.  @qcode{"full"}: one dense
+## LU of the whole system (a sparse Hessian is made full).  Default
+## @qcode{"auto"}: @qcode{"stages"} for those pairs when the Hessian or
+## Jacobian is sparse or the system has more than 600 unknowns, else
+## @qcode{"full"}; other pairs make a sparse Hessian full.
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's relative tolerance (1e-14; fixed steps converge to
 ## NewtonTol/100, and so do reversible ones) and iterations per solve

@@ -91,6 +91,15 @@
 ## matrix comes from finite differences (the nodes and their perturbed
 ## states then take one call) and (Q_DoFs-1+Nodes)*d <= 64, else
 ## @qcode{"kept"}.  Pairs other than Q_DoFs = Nodes+1 keep their matrix.
+## @item NewtonSystem
+## @code{odeSPVI}: how Newton's linear systems are solved.
+## @qcode{"full"}: one LU of the whole step system, of size
+## (Q_DoFs-1+Nodes)*d; @qcode{"stages"}: ceil(Nodes/2) systems of size 2d
+## (d for a separable H with a full Hessian) that one Jacobian for all
+## nodes reduces it to, for the pairs Q_DoFs = Nodes+1 only.  Default
+## @qcode{"auto"}: @qcode{"stages"} when the Hessian or Jacobian is
+## sparse, or when (Q_DoFs-1+Nodes)*d > 600, for those pairs; else
+## @qcode{"full"}.
 ## @item MaxSteps
 ## Largest number of steps of a run.  Default: no limit.
 ## @item Hamiltonian
@@ -136,7 +145,7 @@ function opts = symplecticset (varargin)
                        "HamiltonianHessFcn", "Separable", "Explicit", ...
                        "SecondOrder", "Method", "CompensatedSummation", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
-                       "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
+                       "NewtonSystem", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
                        "StepDensityFcn"};
   persistent odeset_fields = fieldnames (odeset ());
 
@@ -156,6 +165,7 @@ function opts = symplecticset (varargin)
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");
     printf ("       NewtonMatrix:  {[\"auto\"], \"kept\", \"new\"}\n");
+    printf ("       NewtonSystem:  {[\"auto\"], \"full\", \"stages\"}\n");
     printf ("           MaxSteps:  integer, >0, [] (no limit)\n");
     printf ("        Hamiltonian:  function handle, []\n");
     printf ("              Dense:  {[\"off\"], \"on\"}\n");
