@@ -12,7 +12,7 @@
 ## raised in the MEX layer), errors thrown by the user's functions in the
 ## middle of a run, NaN from FCN, Newton and MaxSteps failures (warnings
 ## with partial results), SecondOrder, odeSV's methods, JPattern,
-## reversible steps.
+## reversible steps, sparse Newton matrices.
 ## Returns 0 if all results were as expected, 1 otherwise (valgrind's own
 ## findings are judged by check_memory.sh).
 ## Not a test_*.m file: the test runner does not run it.
@@ -69,6 +69,17 @@ function status = memcheck_run ()
     nbad += check (abs (y(end,1) - cos (1)) < 5e-2, name, "sparse");
     [t, y] = s (osc, [0 1], [1 0], struct ("Jacobian", sparse ([0 1; -1 0]), "TimeStepSize", 0.1));
     nbad += check (numel (t) == 11, name, "sparse Jacobian");
+    ## sparse Newton matrices (KLU): a mass that is not the identity, a
+    ## non-separable H, a sparse Hessian with a NaN (dropped for finite
+    ## differences on its own pattern) and one too large (the probe)
+    [t, y] = s (@(t, y) [2*y(2); -y(1)], [0 1], [1 0], struct ("HamiltonianHessFcn", @(t, y) sparse ([1 0; 0 2]), "TimeStepSize", 0.1));
+    nbad += check (abs (y(end,1) - cos (sqrt (2))) < 0.15, name, "sparse, mass 1/2");
+    [t, y] = s (@(t, y) [y(2) + y(1); -y(1) - y(2)], [0 1], [1 0], struct ("HamiltonianHessFcn", @(t, y) sparse ([1 1; 1 1]), "TimeStepSize", 0.1));
+    nbad += check (all (isfinite (y(:))), name, "sparse, not separable");
+    sol = s (osc, [0 0.1], [1 0], struct ("TimeStepSize", 0.01, "HamiltonianHessFcn", @(t, y) sparse ([NaN 0; 0 1])));
+    nbad += check (sol.x(end) == 0.1 && ! isempty (strfind (sol.stats.jacobian_source, "then finite")), name, "sparse NaN Hessian dropped");
+    sol = s (osc, [0 0.1], [1 0], struct ("TimeStepSize", 0.01, "HamiltonianHessFcn", @(t, y) 1e8 * speye (2)));
+    nbad += check (sol.x(end) == 0.1 && ! isempty (strfind (sol.stats.jacobian_source, "then finite")), name, "sparse Hessian too large");
     ## a span of a few ulps of t, and a MaxStep below the least step
     [t, y] = s (osc, [1 1+1e-14], [1 0]);
     nbad += check (t(end) == 1+1e-14, name, "span of a few ulps");
