@@ -29,9 +29,9 @@ name_eq (const char *a, const char *b)
   return *a == *b;
 }
 
-/* The non-empty field whose name matches (any case); two of them (a
-   struct with Nodes and nodes both set) are an error: which to take? */
-/* the field's value as given (sparse kept) */
+/* The non-empty field whose name matches (any case), as given (a sparse
+   value kept); two of them (a struct with Nodes and nodes both set) are
+   an error: which to take? */
 static const mxArray *
 field_as_given (const char *solver, const mxArray *s, const char *name)
 {
@@ -56,6 +56,7 @@ field_as_given (const char *solver, const mxArray *s, const char *name)
   return v;
 }
 
+/* the same, a sparse value made full */
 const mxArray *
 symmex_field (const char *solver, const mxArray *s, const char *name)
 {
