@@ -2,7 +2,7 @@
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
 /* staged.c -- odeSPVI's Newton systems reduced to stage systems of size
-   2d, for the pairs n - 1 = m (Gauss collocation), as implicit
+   2d (or d), for the pairs n - 1 = m (Gauss collocation), as implicit
    Runge-Kutta codes reduce theirs.
 
    With one Jacobian J for all nodes, Newton's matrix (jacobians.c) is
@@ -20,6 +20,11 @@
    and dx = U^-1 dY (dP = dY's P, da = Phi^-1 dQ).  The LU of the
    ((n - 1 + m) d)^2 matrix becomes ceil(m/2) LUs of (2d)^2 (sparse when
    J is), and no node Jacobian but J is kept.
+
+   A separable H has Jqq = Jpp = 0: I - c J is then solved by its Schur
+   complement, (I - c^2 Jpq Jqp) Zp = bp + c Jpq bq, Zq = bq + c Jqp Zp,
+   of size d (sparse: for a diagonal Jqp, so that Jpq Jqp keeps Jpq's
+   pattern).
 
    J is Df at the middle node of the iterate the matrix is made at: a
    simplified Newton whose matrix misses the nodes' own Jacobians by O(h),
