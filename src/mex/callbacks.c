@@ -327,6 +327,22 @@ take_hessian (symmex_ctx *c, mxArray **out, double t, double *df)
   hess_to_df (c->d, v, df);
 }
 
+mxArray *
+symmex_jac_value (symmex_ctx *c, double t, const double *y)
+{
+  mxGetPr (c->jargs[1])[0] = t;
+  memcpy (mxGetPr (c->jargs[2]), y, sizeof (double) * c->n);
+  mxArray *out[2] = { NULL, NULL };
+  if (c->jac_source == JAC_FCN2)
+    {
+      symmex_call (2, out, c->nargs, c->jargs, c->jname);
+      mxDestroyArray (out[0]);
+      return out[1];
+    }
+  symmex_call (1, out, c->nargs, c->jargs, c->jname);
+  return out[0];
+}
+
 int
 symmex_cb_jac (double t, const double *y, double *df, void *user)
 {
@@ -339,17 +355,7 @@ symmex_cb_jac (double t, const double *y, double *df, void *user)
       memcpy (df, c->jac_const, sizeof (double) * n * n);
       return 0;
     }
-  mxGetPr (c->jargs[1])[0] = t;
-  memcpy (mxGetPr (c->jargs[2]), y, sizeof (double) * n);
-  mxArray *out[2] = { NULL, NULL };
-  if (c->jac_source == JAC_FCN2)
-    {
-      symmex_call (2, out, c->nargs, c->jargs, c->jname);
-      mxDestroyArray (out[0]);
-      out[0] = out[1];
-    }
-  else
-    symmex_call (1, out, c->nargs, c->jargs, c->jname);
+  mxArray *out[1] = { symmex_jac_value (c, t, y) };
   if (c->jac_source == JAC_FCN)
     {
       static const char *expect = "a %dx%d real matrix (df/dy)";
@@ -439,17 +445,7 @@ symmex_cb_jac_csc (double t, const double *y, sym_csc *df, void *user)
       to_csc (c->o->jacobian, c->n, 0, df);
       return 0;
     }
-  mxGetPr (c->jargs[1])[0] = t;
-  memcpy (mxGetPr (c->jargs[2]), y, sizeof (double) * c->n);
-  mxArray *out[2] = { NULL, NULL };
-  if (c->jac_source == JAC_FCN2)
-    {
-      symmex_call (2, out, c->nargs, c->jargs, c->jname);
-      mxDestroyArray (out[0]);
-      out[0] = out[1];
-    }
-  else
-    symmex_call (1, out, c->nargs, c->jargs, c->jname);
+  mxArray *out[1] = { symmex_jac_value (c, t, y) };
   const int hess = c->jac_source != JAC_FCN;
   take_sparse (c, out, t, hess, c->jac_source == JAC_FCN
                ? "the Jacobian function" : c->jac_source == JAC_FCN2

@@ -301,13 +301,10 @@ symmex_sparse_source (symmex_ctx *c, const symmex_args *a)
     case JAC_FCN:
     case JAC_HESSFCN:
       {
-        mxGetPr (c->jargs[1])[0] = a->tspan[0];
-        memcpy (mxGetPr (c->jargs[2]), a->y0, sizeof (double) * c->n);
-        mxArray *out[1] = { NULL };
-        symmex_call (1, out, c->nargs, c->jargs, c->jname);
+        mxArray *v = symmex_jac_value (c, a->tspan[0], a->y0);
         c->probe_jac = 1;
-        int sp = out[0] && mxIsSparse (out[0]);
-        mxDestroyArray (out[0]);
+        int sp = v && mxIsSparse (v);
+        mxDestroyArray (v);
         return sp;
       }
     default:

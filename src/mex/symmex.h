@@ -213,6 +213,9 @@ void symmex_use_sparse (symmex_ctx *c, sym_system *sys);
 int symmex_cb_rhs (double t, const double *y, double *dy, void *user);
 int symmex_cb_rhs_batch (int k, const double *t, const double *y,
                          double *dy, void *user);
+/* The value of the Jacobian's function or the Hessian's (jac_source
+   JAC_FCN, JAC_HESSFCN or JAC_FCN2: FCN's second output) at (t, y) */
+mxArray *symmex_jac_value (symmex_ctx *c, double t, const double *y);
 /* Df sparse (sym_system.sparse): the Jacobian or Hessian as the user's
    function returns it, full or sparse, its entries that are not zero */
 int symmex_cb_jac_csc (double t, const double *y, sym_csc *df, void *user);
