@@ -200,6 +200,10 @@
 /* the stage reduction needs the same S from q's and p's equations: to
    this relative round-off */
 #define SYM_SPVI_STAGE_SAME 1e-10
+/* a sparse LU is made again in the pivot order of the last full one (no
+   allocation, no search) while the ratio of its pivots stays above this
+   fraction of that one's; else a full factorization */
+#define SYM_KLU_REFACTOR 1e-3
 /* steps of the same size, up to the round-off of fixed steps */
 #define SYM_SAME_STEP 1e-10
 

@@ -155,6 +155,8 @@ typedef struct {
   int *mrowind;        /* cap */
   double *mval;        /* 2 cap: M's values, complex ones interleaved */
   int cap;             /* room in jrowind, mrowind and mval */
+  int ncplx;           /* numeric holds complex factors */
+  double rcond;        /* its pivots' ratio at the last full factor */
 } stage_klu;
 
 static void
@@ -352,11 +354,30 @@ klu_analyse (stage_klu *k, const sym_csc *J, int n)
   return SYM_SUCCESS;
 }
 
+/* The factors again in the pivot order of the last full factorization
+   (no allocation), while the pivots' ratio (KLU's rcond) stays within
+   SYM_KLU_REFACTOR of that one's; 0 if not done */
+static int
+klu_again (stage_klu *k, int cplx)
+{
+  if (! k->numeric || k->ncplx != cplx)
+    return 0;
+  ss_hooks h = ss_enter ();
+  int ok = cplx ? klu_z_refactor (k->mcolptr, k->mrowind, k->mval,
+                                  k->symbolic, k->numeric, &k->common)
+                  && klu_z_rcond (k->symbolic, k->numeric, &k->common)
+                : klu_refactor (k->mcolptr, k->mrowind, k->mval,
+                                k->symbolic, k->numeric, &k->common)
+                  && klu_rcond (k->symbolic, k->numeric, &k->common);
+  ss_leave (&h);
+  return ok && k->common.status == KLU_OK
+         && k->common.rcond >= SYM_KLU_REFACTOR * k->rcond;
+}
+
 static int
 sparse_factor (sym_stage_lu *s, double gr, double gi, const sym_csc *J)
 {
   stage_klu *k = s->klu;
-  klu_drop_numeric (k);
   int n = s->n, finite, st = csc_check (J, n, &finite);
   if (st != SYM_SUCCESS)
     return st;
@@ -368,15 +389,29 @@ sparse_factor (sym_stage_lu *s, double gr, double gi, const sym_csc *J)
   if (st != SYM_SUCCESS)
     return st;
   if (! m_fill (k, J, n, s->cplx, gr, gi))
-    return SYM_SINGULAR;
+    {
+      klu_drop_numeric (k);
+      return SYM_SINGULAR;
+    }
   if (! klu_same_pattern (k, J, n)
       && (st = klu_analyse (k, J, n)) != SYM_SUCCESS)
     return st;
+  if (klu_again (k, s->cplx))
+    return SYM_SUCCESS;
+  klu_drop_numeric (k);
   ss_hooks h = ss_enter ();
   k->numeric = s->cplx ? klu_z_factor (k->mcolptr, k->mrowind, k->mval,
                                        k->symbolic, &k->common)
                        : klu_factor (k->mcolptr, k->mrowind, k->mval,
                                      k->symbolic, &k->common);
+  if (k->numeric)
+    {
+      k->ncplx = s->cplx;
+      if (! (s->cplx ? klu_z_rcond (k->symbolic, k->numeric, &k->common)
+                     : klu_rcond (k->symbolic, k->numeric, &k->common)))
+        k->common.rcond = 0.0;
+      k->rcond = k->common.rcond;
+    }
   ss_leave (&h);
   if (! k->numeric)
     return klu_status (&k->common);
