@@ -7,6 +7,7 @@
 #include "symmex.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* OutputFcn's stop flag as `if (stop)` takes it (as ode45 does): true
@@ -113,21 +114,65 @@ grow_all (symmex_ctx *c, size_t cap, size_t first, void **arrays[],
   return want;
 }
 
+double *
+symmex_row (const symmex_ctx *c, size_t r)
+{
+  return c->yblk[r / c->crows] + (r % c->crows) * c->n;
+}
+
+/* room for row c->nrows: the times grown, a new block of rows when the
+   last is full; 0 when it does not fit (c->oom) */
+static int
+row_room (symmex_ctx *c)
+{
+  if (! c->crows)
+    {
+      c->crows = SYMMEX_ROW_BLOCK / (sizeof (double) * c->n);
+      c->crows = c->crows ? c->crows : 1;
+    }
+  if (c->nrows == c->cap)
+    {
+      void **a[] = { (void **) &c->tbuf };
+      const size_t sz[] = { sizeof (double) };
+      size_t cap = grow_all (c, c->cap, 256, a, sz, 1);
+      if (! cap)
+        return 0;
+      c->cap = cap;
+    }
+  if (c->nrows < c->nblk * c->crows)
+    return 1;
+  if (c->nblk == c->blkcap)
+    {
+      void **a[] = { (void **) &c->yblk };
+      const size_t sz[] = { sizeof (double *) };
+      size_t cap = grow_all (c, c->blkcap, 16, a, sz, 1);
+      if (! cap)
+        return 0;
+      c->blkcap = cap;
+    }
+  /* tried with malloc and freed at once first, as the core's large
+     blocks (entry.c), so that one that cannot be had is told as the
+     output's (mxMalloc would raise its own error) */
+  const size_t nb = c->crows * sizeof (double) * c->n;
+  void *p = malloc (nb);
+  if (! p)
+    {
+      c->oom = 1;
+      return 0;
+    }
+  free (p);
+  c->yblk[c->nblk++] = mxMalloc (nb);
+  return 1;
+}
+
 int
 symmex_sink_row (double t, const double *y, void *user)
 {
   symmex_ctx *c = user;
-  if (c->nrows == c->cap)
-    {
-      void **a[] = { (void **) &c->tbuf, (void **) &c->ybuf };
-      const size_t sz[] = { sizeof (double), sizeof (double) * c->n };
-      size_t cap = grow_all (c, c->cap, 256, a, sz, 2);
-      if (! cap)
-        return -1;
-      c->cap = cap;
-    }
+  if (! row_room (c))
+    return -1;
   c->tbuf[c->nrows] = t;
-  memcpy (c->ybuf + c->nrows * c->n, y, sizeof (double) * c->n);
+  memcpy (symmex_row (c, c->nrows), y, sizeof (double) * c->n);
   c->nrows++;
   if (c->o->outputfcn && c->nrows > 1)
     {
@@ -197,7 +242,7 @@ symmex_energy (symmex_ctx *c)
     {
       mxArray *out[1] = { NULL };
       mxGetPr (args[1])[0] = c->tbuf[r];
-      memcpy (mxGetPr (args[2]), c->ybuf + r * n, sizeof (double) * n);
+      memcpy (mxGetPr (args[2]), symmex_row (c, r), sizeof (double) * n);
       symmex_call (1, out, c->nargs, args, name);
       c->hbuf[r] = symmex_checked (c, out, 1, "the Hamiltonian", 0,
                                    c->tbuf[r], "a real scalar")[0];
@@ -219,6 +264,35 @@ rows_matrix (const double *buf, size_t nrows, int n)
   for (size_t r = 0; r < nrows; r++)
     for (int i = 0; i < n; i++)
       p[r + (size_t) i * nrows] = buf[r * n + i];
+  return a;
+}
+
+/* The rows as an nrows-by-n matrix (rows: y in rows, as ode45 gives
+   them) or n-by-nrows (columns: sol.y); each block of them freed once
+   copied */
+static mxArray *
+rows_out (symmex_ctx *c, int rows)
+{
+  const size_t nrows = c->nrows, n = c->n;
+  mxArray *a = rows ? mxCreateDoubleMatrix (nrows, n, mxREAL)
+                    : mxCreateDoubleMatrix (n, nrows, mxREAL);
+  double *p = mxGetPr (a);
+  for (size_t b = 0; b < c->nblk; b++)
+    {
+      const size_t r0 = b * c->crows;
+      for (size_t r = r0; r < nrows && r < r0 + c->crows; r++)
+        {
+          const double *y = symmex_row (c, r);
+          if (rows)
+            for (size_t i = 0; i < n; i++)
+              p[r + i * nrows] = y[i];
+          else
+            memcpy (p + r * n, y, sizeof (double) * n);
+        }
+      mxFree (c->yblk[b]);
+      c->yblk[b] = NULL;
+    }
+  c->nblk = 0;
   return a;
 }
 
@@ -298,7 +372,7 @@ dense_struct (const symmex_ctx *c)
 }
 
 static mxArray *
-sol_struct (const symmex_method *m, const void *own, const symmex_ctx *c,
+sol_struct (const symmex_method *m, const void *own, symmex_ctx *c,
             const sym_stats *st, const char *jac_used)
 {
   const int n = c->n, has_ev = c->o->events != NULL;
@@ -307,9 +381,7 @@ sol_struct (const symmex_method *m, const void *own, const symmex_ctx *c,
   mxArray *x = mxCreateDoubleMatrix (1, c->nrows, mxREAL);
   if (c->nrows)
     memcpy (mxGetPr (x), c->tbuf, sizeof (double) * c->nrows);
-  mxArray *y = mxCreateDoubleMatrix (n, c->nrows, mxREAL);
-  if (c->nrows)
-    memcpy (mxGetPr (y), c->ybuf, sizeof (double) * c->nrows * n);
+  mxArray *y = rows_out (c, 0);
   mxSetField (s, 0, "x", x);
   mxSetField (s, 0, "y", y);
   mxSetField (s, 0, "solver", mxCreateString (m->name));
@@ -345,7 +417,7 @@ sol_struct (const symmex_method *m, const void *own, const symmex_ctx *c,
 
 void
 symmex_outputs (const symmex_method *m, const void *own,
-                const symmex_ctx *c, const sym_stats *st,
+                symmex_ctx *c, const sym_stats *st,
                 const char *jac_used, int nlhs, mxArray *plhs[])
 {
   const int n = c->n;
@@ -357,7 +429,7 @@ symmex_outputs (const symmex_method *m, const void *own,
       return;
     }
   plhs[0] = column_of (c->tbuf, c->nrows);
-  plhs[1] = rows_matrix (c->ybuf, c->nrows, n);
+  plhs[1] = rows_out (c, 1);
   if (nlhs > 2)
     {
       mxArray *te, *ye, *ie;

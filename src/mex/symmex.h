@@ -63,6 +63,8 @@ extern const symmex_method *const symmex_methods[];
 /* the size of a block of the core's that could not be allocated in this
    call (0: none); blocks of SYMMEX_PROBE_BYTES or more are tried first */
 #define SYMMEX_PROBE_BYTES ((size_t) 64 << 20)
+/* the rows of the output are kept in blocks of about this many bytes */
+#define SYMMEX_ROW_BLOCK ((size_t) 1 << 20)
 extern size_t symmex_alloc_failed;
 void symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[],
                  int nrhs, const mxArray *prhs[]);
@@ -166,8 +168,11 @@ typedef struct {
   mxArray **oargs;           /* {OutputFcn, t, y, flag, extras...} */
   int nextra;
   const mxArray *const *extra;
-  double *tbuf, *ybuf;
-  size_t nrows, cap;
+  /* the rows: their times, and their y in blocks of crows rows each
+     (symmex_row), so that the outputs are made block by block, each
+     freed once copied: the rows are never held twice */
+  double *tbuf, **yblk;
+  size_t nrows, cap, crows, nblk, blkcap;
   double *te, *ye;
   int *ie;
   size_t nev, evcap;
@@ -208,6 +213,9 @@ symmex_ctx *symmex_problem (const char *solver, const symmex_args *a,
 int symmex_sparse_source (symmex_ctx *c, const symmex_args *a);
 /* the core's system takes Df sparse from then on */
 void symmex_use_sparse (symmex_ctx *c, sym_system *sys);
+
+/* outputs.c: row r of the rows kept */
+double *symmex_row (const symmex_ctx *c, size_t r);
 
 /* callbacks.c: the core's callbacks (user: the symmex_ctx) */
 int symmex_cb_rhs (double t, const double *y, double *dy, void *user);
@@ -260,9 +268,10 @@ void symmex_energy (symmex_ctx *c);
 /* OutputFcn (t, y(OutputSel), flag, extras...): its stop flag */
 int symmex_outputfcn (symmex_ctx *c, const double *t, int nt,
                       const double *y, const char *flag);
-/* [t, y, te, ye, ie] or sol into plhs */
+/* [t, y, te, ye, ie] or sol into plhs (the rows' blocks freed as they
+   are copied: the last use of the rows) */
 void symmex_outputs (const symmex_method *m, const void *own,
-                     const symmex_ctx *c, const sym_stats *st,
+                     symmex_ctx *c, const sym_stats *st,
                      const char *jac_used, int nlhs, mxArray *plhs[]);
 
 /* ------------------------------------------------------------ messages */

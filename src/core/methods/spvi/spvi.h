@@ -160,7 +160,8 @@ typedef struct {
   /* errors of the polynomial prediction (solution - prediction) of the
      last nhist accepted steps, newest first, SYM_SPVI_HIST + 1 of N each;
      all continued steps of size hhist */
-  double *dhist;
+  float *dhist;        /* (single precision: corrections of a start, a
+                          large part of a large system's memory) */
   double *xp;          /* the trial's polynomial prediction of x
                           (predict.c), for dhist when it is accepted */
   int nhist;

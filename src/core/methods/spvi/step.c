@@ -174,7 +174,7 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
       s->gw = sym_calloc (s->ng, sizeof (double));
       s->xp = sym_calloc (s->lo.N, sizeof (double));
       s->dhist = sym_calloc ((size_t) (SYM_SPVI_HIST + 1) * s->lo.N,
-                             sizeof (double));
+                             sizeof (float));
       if (! s->xi || ! s->vinv || ! s->f0 || ! s->lv || ! s->dlv || ! s->cb
           || ! s->vq || ! s->dhist || ! s->xp || ! s->gz || ! s->gw || ! s->ach
           || ! s->pz || ! s->pw || ! s->pc)
@@ -362,11 +362,11 @@ spvi_accept (void *state)
       if (! (s->nhist > 0 && sym_same_step (tr->h, s->hhist)))
         s->nhist = 0;
       memmove (s->dhist + N, s->dhist,
-               (size_t) SYM_SPVI_HIST * N * sizeof (double));
+               (size_t) SYM_SPVI_HIST * N * sizeof (float));
       for (int i = 0; i < na; i++)
-        s->dhist[i] = tr->a[i] - s->xp[i];
+        s->dhist[i] = (float) (tr->a[i] - s->xp[i]);
       for (int i = na; i < N; i++)
-        s->dhist[i] = tr->P[i - na] - s->xp[i];
+        s->dhist[i] = (float) (tr->P[i - na] - s->xp[i]);
       if (s->nhist <= SYM_SPVI_HIST)
         s->nhist++;
       s->hhist = tr->h;
