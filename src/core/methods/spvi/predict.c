@@ -347,9 +347,9 @@ spvi_predict_history (spvi_state *s, double h)
       w = sym_extrap_weights (L);
       for (int i = 0; i < N; i++)
         {
-          double v = s->dhist[i];
+          double v = s->dscale[0] * s->dhist[i];
           for (int l = 0; l < L; l++)
-            v -= w[l] * s->dhist[(size_t) (l + 1) * N + i];
+            v -= w[l] * s->dscale[l + 1] * s->dhist[(size_t) (l + 1) * N + i];
           e = fmax (e, fabs (v));
         }
       if (e < best)
@@ -361,7 +361,7 @@ spvi_predict_history (spvi_state *s, double h)
   w = sym_extrap_weights (best_l);
   for (int l = 0; l < best_l; l++)
     for (int i = 0; i < N; i++)
-      s->lo.x[i] += w[l] * s->dhist[(size_t) l * N + i];
+      s->lo.x[i] += w[l] * s->dscale[l] * s->dhist[(size_t) l * N + i];
 }
 
 /* The accuracy of the solved a and P of r, by tol (pairs n - 1 = m) or

@@ -160,8 +160,10 @@ typedef struct {
   /* errors of the polynomial prediction (solution - prediction) of the
      last nhist accepted steps, newest first, SYM_SPVI_HIST + 1 of N each;
      all continued steps of size hhist */
-  float *dhist;        /* (single precision: corrections of a start, a
-                          large part of a large system's memory) */
+  float *dhist;        /* (single precision, in units of dscale: they
+                          only correct a start, and held a large part of
+                          a large system's memory) */
+  double dscale[SYM_SPVI_HIST + 1];
   double *xp;          /* the trial's polynomial prediction of x
                           (predict.c), for dhist when it is accepted */
   int nhist;

@@ -363,10 +363,17 @@ spvi_accept (void *state)
         s->nhist = 0;
       memmove (s->dhist + N, s->dhist,
                (size_t) SYM_SPVI_HIST * N * sizeof (float));
-      for (int i = 0; i < na; i++)
-        s->dhist[i] = (float) (tr->a[i] - s->xp[i]);
-      for (int i = na; i < N; i++)
-        s->dhist[i] = (float) (tr->P[i - na] - s->xp[i]);
+      memmove (s->dscale + 1, s->dscale, SYM_SPVI_HIST * sizeof (double));
+      /* in units of its largest error: single precision holds its range
+         at any size of the data */
+      double big = 0.0;
+      for (int i = 0; i < N; i++)
+        big = fmax (big, fabs ((i < na ? tr->a[i] : tr->P[i - na])
+                               - s->xp[i]));
+      s->dscale[0] = big > 0.0 && isfinite (big) ? big : 1.0;
+      for (int i = 0; i < N; i++)
+        s->dhist[i] = (float) (((i < na ? tr->a[i] : tr->P[i - na])
+                                - s->xp[i]) / s->dscale[0]);
       if (s->nhist <= SYM_SPVI_HIST)
         s->nhist++;
       s->hhist = tr->h;
