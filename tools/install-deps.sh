@@ -54,7 +54,7 @@ check () {
 
 check
 if [ -z "$missing" ] && [ "${SYM_DEPS_FORCE:-0}" != 1 ]; then
-  echo "deps: ok ($(echo $TOOLS | sed 's/ /, /g'), LAPACK/BLAS present)"
+  echo "deps: ok ($(echo $TOOLS | sed 's/ /, /g'), LAPACK/BLAS and KLU present)"
   exit 0
 fi
 
