@@ -225,6 +225,15 @@ sym_fcache_place (sym_fcache *c, int d, int jac, double *w)
 }
 
 int
+sym_onestep_fcache (sym_onestep *o, int implicit, double *w)
+{
+  sym_fcache_place (&o->fc, o->d, implicit && ! o->sparse, w);
+  o->fc.sparse = o->sparse;
+  return o->sparse && sym_csc_init (&o->fc.js, o->n, 0) ? SYM_ENOMEM
+                                                        : SYM_SUCCESS;
+}
+
+int
 sym_fcache_f (sym_fcache *c, sym_eval *ev, double t, const double *a,
               const double *b)
 {

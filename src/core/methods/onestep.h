@@ -237,6 +237,10 @@ typedef struct {
   int sparse;            /* implicit with a sparse Df */
 } sym_onestep;
 
+/* o's f cache placed at w, with a dense Df when implicit and not sparse,
+   else (sparse) a sym_csc of its own; SYM_ENOMEM */
+int sym_onestep_fcache (sym_onestep *o, int implicit, double *w);
+
 /* The start of the SE and SV allocs: a zeroed state of size bytes with
    its head filled from dim, the method's order and opts, or NULL with
    *status SYM_EBADINPUT (dim < 1) or SYM_ENOMEM. */

@@ -147,9 +147,7 @@ sv_alloc (int dim, const sym_method_opts *opts, int *status)
   double *w = s->o.block;
   sym_recs_place (&s->o.r, n, 2 * d, w);
   w += sym_recs_len (n, 2 * d);
-  sym_fcache_place (&s->o.fc, d, implicit && ! s->o.sparse, w);
-  s->o.fc.sparse = s->o.sparse;
-  if (s->o.sparse && sym_csc_init (&s->o.fc.js, n, 0))
+  if (sym_onestep_fcache (&s->o, implicit, w))
     {
       sym_onestep_free (s);
       *status = SYM_ENOMEM;
