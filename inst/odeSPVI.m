@@ -99,7 +99,8 @@
 ## LU of the whole system (a sparse Hessian is made full).  Default
 ## @qcode{"auto"}: @qcode{"stages"} for those pairs when the Hessian or
 ## Jacobian is sparse or the system has more than 600 unknowns, else
-## @qcode{"full"}; other pairs make a sparse Hessian full.
+## @qcode{"full"}; the other pairs with a sparse Hessian or Jacobian
+## factor the whole system sparse, with one Jacobian for all nodes.
 ## @item NewtonTol, MaxNewtonIterations
 ## Newton's relative tolerance (1e-14; fixed steps converge to
 ## NewtonTol/100, and so do reversible ones) and iterations per solve

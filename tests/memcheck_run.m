@@ -80,6 +80,11 @@ function status = memcheck_run ()
     nbad += check (sol.x(end) == 0.1 && ! isempty (strfind (sol.stats.jacobian_source, "then finite")), name, "sparse NaN Hessian dropped");
     sol = s (osc, [0 0.1], [1 0], struct ("TimeStepSize", 0.01, "HamiltonianHessFcn", @(t, y) 1e8 * speye (2)));
     nbad += check (sol.x(end) == 0.1 && ! isempty (strfind (sol.stats.jacobian_source, "then finite")), name, "sparse Hessian too large");
+    if (strcmp (name, "odeSPVI"))
+      ## a pair without stages: the whole system, sparse
+      [t, y] = s (osc, [0 1], [1 0], struct ("HamiltonianHessFcn", @(t, y) speye (2), "Q_DoFs", 3, "Nodes", 3, "TimeStepSize", 0.1));
+      nbad += check (abs (y(end,1) - cos (1)) < 1e-4, name, "sparse, whole system");
+    endif
     ## a span of a few ulps of t, and a MaxStep below the least step
     [t, y] = s (osc, [1 1+1e-14], [1 0]);
     nbad += check (t(end) == 1+1e-14, name, "span of a few ulps");

@@ -380,7 +380,8 @@ extern const sym_stepper_type *const sym_step_splitting;
    Jacobian for all nodes (the pairs q_dofs = nodes + 1 only), or chosen:
    stages when Df is sparse or the whole system has more than
    SYM_SPVI_STAGES_N unknowns.  sparse: the system's Df is sparse
-   (sym_system.sparse; stages then) */
+   (sym_system.sparse): stages, or for the other pairs the whole system
+   with one Jacobian for all nodes, factored sparse */
 typedef struct {
   int q_dofs, nodes;
   int newton_matrix;

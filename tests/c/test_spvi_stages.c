@@ -4,7 +4,8 @@
 /* test_spvi_stages.c -- odeSPVI's Newton systems by stage systems
    (staged.c) against the whole step system: the same fixed steps to
    round-off, dense and sparse, with finite differences (one state per
-   column, or per colour of the pattern) and with the user's sparse Df;
+   column, or per colour of the pattern) and with the user's sparse Df,
+   and the pairs without stages by their whole system, sparse;
    bounded energy over long runs; the stage systems' sizes (no matrix of
    size d^2 for a sparse Df); and the refusals. */
 #include "sym.h"
@@ -218,7 +219,9 @@ start (double *y0)
 static void
 test_same_steps (void)
 {
-  static const int pairs[][2] = { { 4, 3 }, { 2, 1 }, { 3, 2 }, { 6, 5 } };
+  /* the last three are no collocation pairs: the sparse whole system */
+  static const int pairs[][2] = { { 4, 3 }, { 2, 1 }, { 3, 2 }, { 6, 5 },
+                                  { 3, 3 }, { 2, 2 }, { 5, 3 } };
   D = 24;
   pattern ();
   double *y0 = malloc (2 * D * sizeof (double));
@@ -235,9 +238,10 @@ test_same_steps (void)
         for (int batch = 0; batch < 2; batch++)
           {
             ncsc = 0;
-            CHECK (run (nq, nd, SYM_SYSTEM_STAGES, kind, batch, 0.05, 40,
-                        y0, ys, &ss) == SYM_DONE, "stages (%d,%d) kind %d",
-                   nq, nd, kind);
+            CHECK (run (nq, nd, nq - 1 == nd ? SYM_SYSTEM_STAGES
+                                              : SYM_SYSTEM_AUTO, kind,
+                        batch, 0.05, 40, y0, ys, &ss) == SYM_DONE,
+                   "stages (%d,%d) kind %d", nq, nd, kind);
             double r = reldiff (ys, yf);
             CHECK (r <= 1e-12, "(%d,%d) kind %d batch %d: stages differ "
                    "from the whole system by %.3g", nq, nd, kind, batch, r);
@@ -315,11 +319,10 @@ test_refusals (void)
   double y0[8], y1[8];
   start (y0);
   sym_stats st;
-  /* stages need a pair n - 1 = m; a sparse Df needs stages */
+  /* stages need a pair n - 1 = m; a sparse Df, no whole dense system */
   CHECK (run (3, 3, SYM_SYSTEM_STAGES, DENSE_FD, 0, 0.1, 2, y0, y1, &st)
          == SYM_EBADINPUT, "stages of (3,3)");
-  CHECK (run (3, 3, SYM_SYSTEM_AUTO, SPARSE_FD, 0, 0.1, 2, y0, y1, &st)
-         == SYM_EBADINPUT, "sparse (3,3)");
+
   CHECK (run (4, 3, SYM_SYSTEM_FULL, SPARSE_FD, 0, 0.1, 2, y0, y1, &st)
          == SYM_EBADINPUT, "sparse, full system");
   free (colptr);
@@ -370,8 +373,10 @@ test_alloc_failure (void)
   pattern ();
   double y0[12], y1[12];
   start (y0);
-  for (int kind = DENSE_FD; kind <= SPARSE_JAC; kind++)
+  /* (3,3): the whole system, sparse */
+  for (int kind = DENSE_FD; kind <= SPARSE_JAC + 2; kind++)
     {
+      const int whole = kind > SPARSE_JAC;
       long k;
       sym_set_allocator (drv_counting_alloc, drv_counting_free);
       for (k = 1; k < 100000; k++)
@@ -380,8 +385,10 @@ test_alloc_failure (void)
           drv_alloc_count = drv_alloc_live = 0;
           drv_alloc_fail_at = k;
           ylast = y1;
-          int s = run (4, 3, SYM_SYSTEM_STAGES, kind, 0, 0.1, 3, y0, y1,
-                       &st);
+          int s = whole ? run (3, 3, SYM_SYSTEM_AUTO, kind - 2, 0, 0.1, 3,
+                               y0, y1, &st)
+                        : run (4, 3, SYM_SYSTEM_STAGES, kind, 0, 0.1, 3, y0,
+                               y1, &st);
           CHECK (drv_alloc_live == 0, "kind %d: %ld blocks left with "
                  "allocation %ld failing", kind, drv_alloc_live, k);
           if (drv_alloc_count < k)
@@ -392,7 +399,8 @@ test_alloc_failure (void)
             }
           /* (the user's Df callback reports its own failure) */
           CHECK (s == SYM_ENOMEM
-                 || (kind == SPARSE_JAC && s == SYM_ECALLBACK),
+                 || ((whole ? kind - 2 : kind) == SPARSE_JAC
+                     && s == SYM_ECALLBACK),
                  "kind %d: %s with allocation %ld failing", kind,
                  sym_status_name (s), k);
         }

@@ -71,13 +71,13 @@ spvi_parse (const char *solver, const mxArray *opts, void *own)
                        solver, o->q_dofs, o->nodes);
 }
 
-/* a sparse Df goes by stages: the pairs Q_DoFs = Nodes + 1 unless
-   NewtonSystem is "full" (the others make it full) */
+/* a sparse Df stays sparse (by stages for the pairs Q_DoFs = Nodes + 1,
+   else the whole system) unless NewtonSystem is "full" */
 static int
 spvi_take_sparse (void *own, int commit)
 {
   sym_spvi_opts *o = own;
-  const int ok = o->q_dofs == o->nodes + 1 && o->system != SYM_SYSTEM_FULL;
+  const int ok = o->system != SYM_SYSTEM_FULL;
   if (ok && commit)
     o->sparse = 1;
   return ok;

@@ -21,6 +21,9 @@
    ((n - 1 + m) d)^2 matrix becomes ceil(m/2) LUs of (2d)^2 (sparse when
    J is), and no node Jacobian but J is kept.
 
+   The other pairs with a sparse J (whole): Newton's matrix itself,
+   assembled sparse from J's blocks, one sparse LU.
+
    A separable H has Jqq = Jpp = 0: I - c J is then solved by its Schur
    complement, (I - c^2 Jpq Jqp) Zp = bp + c Jpq bq, Zq = bq + c Jqp Zp,
    of size d (sparse: for a diagonal Jqp, so that Jpq Jqp keeps Jpq's
@@ -34,6 +37,7 @@
 #include <complex.h>
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 struct spvi_stages {
@@ -57,6 +61,13 @@ struct spvi_stages {
   double *J;                    /* dense: (2d)^2 */
   sym_csc Js;                   /* sparse */
   double complex *z;            /* work: ns x 2d */
+  /* the pairs n - 1 != m with a sparse J: no stages (ns = 0), the whole
+     system M, assembled sparse as M - I (lu[0], factored as I + (M - I))
+     from J's blocks as jacobians.c's matrix with every A_j = J */
+  int whole;
+  sym_csc Mw;
+  double *wcol;                 /* work: N (a column of M - I) */
+  int *rows;                    /* work: N (its rows) */
   double *wv;                   /* work: 2d */
 };
 
@@ -125,6 +136,8 @@ transforms (spvi_core *c, spvi_stages *g)
 {
   const int n = c->n, m = c->m;
   const size_t mm = (size_t) m * m;
+  if (n - 1 != m)
+    return -1;
   double complex *wd = sym_malloc (8 * mm * sizeof (double complex));
   double *rs = sym_malloc ((2 * mm + 8 * (size_t) m + 2 * mm) * sizeof (double));
   int st = SYM_ENOMEM;
@@ -234,6 +247,9 @@ spvi_stages_free (spvi_core *c)
   for (int i = 0; i < SYM_SPVI_MAX_NODES; i++)
     sym_stage_lu_free (&g->lu[i]);
   sym_csc_free (&g->Js);
+  sym_csc_free (&g->Mw);
+  sym_free (g->wcol);
+  sym_free (g->rows);
   sym_csc_free (&g->Bs);
   sym_csc_free (&g->Ks);
   sym_free (g->aq);
@@ -265,10 +281,121 @@ spvi_stages_init (spvi_core *c, int sparse)
   g->bq = g->rq + 2 * mm;
   g->bp = g->rq + 3 * mm;
   int st = transforms (c, g);
+  if (st == -1 && sparse)
+    {
+      /* a pair n - 1 != m: the whole system, sparse */
+      g->whole = 1;
+      g->ns = 0;
+      g->wcol = sym_calloc (c->N, sizeof (double));
+      g->rows = sym_malloc ((size_t) c->N * sizeof (int));
+      if (! g->wcol || ! g->rows || sym_csc_init (&g->Mw, c->N, 0)
+          || sym_stage_lu_init (&g->lu[0], c->N, 1))
+        return SYM_ENOMEM;
+      return SYM_SUCCESS;
+    }
   if (st)
     return st == -1 ? SYM_EBADINPUT : st;
   g->z = sym_calloc (nn * g->ns, sizeof (double complex));
   return g->z ? SYM_SUCCESS : SYM_ENOMEM;
+}
+
+static int
+cmp_int (const void *a, const void *b)
+{
+  const int x = *(const int *) a, y = *(const int *) b;
+  return (x > y) - (x < y);
+}
+
+/* v times the column l of J's block (rows r0.., cols c0..), d rows, into
+   the column work at rows base.. (their rows listed) */
+static void
+add_block_col (spvi_stages *g, int d, int r0, int c0, int l, double v,
+               int base, int *nr)
+{
+  const sym_csc *J = &g->Js;
+  for (int e = J->colptr[c0 + l]; e < J->colptr[c0 + l + 1]; e++)
+    {
+      const int i = J->rowind[e] - r0;
+      if (i < 0 || i >= d || v == 0.0)
+        continue;
+      if (g->wcol[base + i] == 0.0)
+        g->rows[(*nr)++] = base + i;
+      g->wcol[base + i] += v * J->val[e];
+      if (g->wcol[base + i] == 0.0)
+        g->wcol[base + i] = DBL_MIN;   /* keeps its place in the list */
+    }
+}
+
+/* the same for v at row base + l (an identity block's entry) */
+static void
+add_diag (spvi_stages *g, int row, double v, int *nr)
+{
+  if (v == 0.0)
+    return;
+  if (g->wcol[row] == 0.0)
+    g->rows[(*nr)++] = row;
+  g->wcol[row] += v;
+  if (g->wcol[row] == 0.0)
+    g->wcol[row] = DBL_MIN;
+}
+
+/* M - I of the whole step system (jacobians.c's M with every node's
+   Jacobian J), column by column: the diagonal always present */
+static int
+assemble_whole (spvi_core *c, spvi_stages *g)
+{
+  const int d = c->d, n = c->n, m = c->m, N = c->N, p0 = (n - 1) * d;
+  const double hh = 0.5 * c->h;
+  sym_csc *M = &g->Mw;
+  int nnz = 0;
+  M->colptr[0] = 0;
+  for (int col = 0; col < N; col++)
+    {
+      int nr = 0;
+      const int l = col < p0 ? col % d : (col - p0) % d;
+      if (col < p0)
+        {
+          const int i = col / d + 1;           /* the mode a_i */
+          for (int s = 1; s < n; s++)
+            {
+              double v = 0.0;
+              for (int j = 0; j < m; j++)
+                v += c->g[j * n + s] * c->phi[j * n + i];
+              add_block_col (g, d, d, 0, l, hh * v, (s - 1) * d, &nr);
+            }
+          for (int r = 0; r < m; r++)
+            {
+              add_block_col (g, d, 0, 0, l, hh * c->phi[r * n + i],
+                             p0 + r * d, &nr);
+              add_diag (g, p0 + r * d + l, -c->dl[r * n + i], &nr);
+            }
+        }
+      else
+        {
+          const int j = (col - p0) / d;        /* the momentum P_j */
+          for (int s = 1; s < n; s++)
+            {
+              add_block_col (g, d, d, d, l, hh * c->g[j * n + s],
+                             (s - 1) * d, &nr);
+              add_diag (g, (s - 1) * d + l, c->wdl[j * n + s], &nr);
+            }
+          add_block_col (g, d, 0, d, l, hh, p0 + j * d, &nr);
+        }
+      add_diag (g, col, -1.0, &nr);
+      qsort (g->rows, nr, sizeof (int), cmp_int);
+      if (sym_csc_reserve (M, nnz + nr + (N - col - 1)))
+        return SYM_ENOMEM;
+      for (int k = 0; k < nr; k++)
+        {
+          const int i = g->rows[k];
+          M->rowind[nnz] = i;
+          M->val[nnz++] = g->wcol[i] == DBL_MIN ? 0.0 : g->wcol[i];
+          g->wcol[i] = 0.0;
+        }
+      M->colptr[col + 1] = nnz;
+    }
+  M->nnz = nnz;
+  return SYM_SUCCESS;
 }
 
 /* the stage LUs of size nlu (allocated when the size changes) */
@@ -396,6 +523,13 @@ spvi_stages_factor (void *ctx, const double *x, sym_counters *cnt)
   c->noise_ok = 0;
   c->nae = 1;
   c->extra = 0;
+  if (g->whole)
+    {
+      /* M = I + (M - I) */
+      st = assemble_whole (c, g);
+      return st ? st : sym_stage_lu_factor (&g->lu[0], -1.0, 0.0, NULL, 0,
+                                            &g->Mw, cnt);
+    }
   g->schur = 0;
   if ((st = g->sparse ? schur_setup_sparse (g, c->d)
                       : schur_setup (g, c->d)) < 0)
@@ -508,6 +642,8 @@ spvi_stages_solve (void *ctx, double *b, sym_counters *cnt)
   spvi_stages *g = c->sg;
   const int d = c->d, m = c->m, ns = g->ns;
   const size_t nn = 2 * (size_t) d;
+  if (g->whole)
+    return sym_stage_lu_solve (&g->lu[0], b, cnt);
   double *b1 = b, *b2 = b + (size_t) m * d;    /* R1 rows, R2 rows */
   for (int i = 0; i < ns; i++)
     {

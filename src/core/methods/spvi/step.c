@@ -121,8 +121,9 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
                    || ! (opts->newton_tol < 1.0)))
       || newmat < SYM_MATRIX_AUTO || newmat > SYM_MATRIX_NEW
       || system < SYM_SYSTEM_AUTO || system > SYM_SYSTEM_STAGES
-      /* stages need a pair n - 1 = m; a sparse Df needs stages */
-      || (n - 1 != m && (system == SYM_SYSTEM_STAGES || sparse))
+      /* stages need a pair n - 1 = m; a sparse Df, the staged solver
+         (by stages, or for the other pairs the whole system, sparse) */
+      || (n - 1 != m && system == SYM_SYSTEM_STAGES)
       || (sparse && system == SYM_SYSTEM_FULL))
     {
       *status = SYM_EBADINPUT;
