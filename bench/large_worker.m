@@ -46,16 +46,6 @@
 
 ## ------------------------------------------------------------ problems
 
-function dy = fpu_f (t, y)
-  ## the FPU chain (bench/fpu.m), Vectorized: the columns of y
-  d = rows (y) / 2;
-  q = y(1:d, :);  p = y(d+1:end, :);
-  z = zeros (1, columns (y));
-  r = diff ([z; q; z]);                  # d+1 bonds
-  F = r + r.^3;                          # V'(r)
-  dy = [p; F(2:end, :) - F(1:end-1, :)];
-endfunction
-
 function Hs = fpu_hs (t, y)
   ## its Hessian, sparse: [K 0; 0 I], K tridiagonal
   d = rows (y) / 2;
@@ -166,8 +156,9 @@ function [solver, f, hf, Hfun, y0, o] = setup (cas, d, h, hess, sys)
   i = (1:d).';
   switch (cas)
     case "fpu"
-      solver = @odeSPVI;  f = @fpu_f;  Hfun = @fpu_H;
-      hf = ifelse_ (strcmp (hess, "full"), @fpu_hf, @fpu_hs);
+      ## bench/fpu.m, asked for f alone (Vectorized: the columns of y)
+      solver = @odeSPVI;  f = @fpu;  Hfun = @fpu_H;
+      hf = merge (strcmp (hess, "full"), {@fpu_hf}, {@fpu_hs}){1};
       y0 = [0.2 * sin(1.3 * i); 0.2 * cos(0.7 * i)];
       o = symplecticset ("TimeStepSize", h, "Q_DoFs", 4, "Nodes", 3, ...
                          "Vectorized", "on", "HamiltonianHessFcn", hf);
@@ -178,7 +169,7 @@ function [solver, f, hf, Hfun, y0, o] = setup (cas, d, h, hess, sys)
                          "HamiltonianHessFcn", hf);
     case "ns"
       solver = @odeSV;  f = @ns_f;  Hfun = @ns_H;
-      hf = ifelse_ (strcmp (hess, "full"), @ns_hf, @ns_hs);
+      hf = merge (strcmp (hess, "full"), {@ns_hf}, {@ns_hs}){1};
       y0 = [0.2 * sin(1.3 * i); 0.2 * cos(0.7 * i)];
       o = symplecticset ("TimeStepSize", h, "HamiltonianHessFcn", hf);
     otherwise
@@ -186,16 +177,7 @@ function [solver, f, hf, Hfun, y0, o] = setup (cas, d, h, hess, sys)
   endswitch
   o.Stats = "on";
   if (strcmp (func2str (solver), "odeSPVI"))
-    ## set on the struct: symplecticset may not list it yet
-    o.NewtonSystem = sys;
-  endif
-endfunction
-
-function r = ifelse_ (c, a, b)
-  if (c)
-    r = a;
-  else
-    r = b;
+    o = symplecticset (o, "NewtonSystem", sys);
   endif
 endfunction
 

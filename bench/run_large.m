@@ -112,14 +112,6 @@ function s = dtext (d)
   endif
 endfunction
 
-function s = ifelse_text (c, a, b)
-  if (c)
-    s = a;
-  else
-    s = b;
-  endif
-endfunction
-
 function v = meminfo (key)
   s = fileread ("/proc/meminfo");
   v = 1024 * str2double (regexp (s, [key ":\\s*(\\d+)"], "tokens", "once"){1});
@@ -334,7 +326,7 @@ md{end+1} = sprintf (["What is measured.  Every run is its own octave-cli proces
   "entries): / d.  Parts B, C and D call `[t, y] = solver (fcn, [0, tf/2, tf], y0, opts)` " ...
   "(an even number of steps: three rows, all at step points); part A calls the plain " ...
   "fixed-step form, see there.  Times are from a machine that may have been busy.\n"], ...
-  ifelse_text (all ([A.reset Adense.reset]), "", "; it failed, so VmHWM before may be higher than VmRSS"));
+  merge (all ([A.reset Adense.reset]), "", "; it failed, so VmHWM before may be higher than VmRSS"));
 
 ## A
 md{end+1} = "## A. FPU chain, sparse Hessian, odeSPVI (4, 3)\n";
