@@ -50,27 +50,32 @@ driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
 
 size_t symmex_alloc_failed;
 
+void *
+symmex_malloc_or_null (size_t nbytes)
+{
+  /* the only malloc of the MEX files: freed at once, with no user code
+     in between, so that nothing is held outside mxMalloc */
+  void *p = malloc (nbytes);
+  if (! p)
+    return NULL;
+  free (p);
+  return mxMalloc (nbytes);
+}
+
 /* The core's allocator: mxMalloc (Octave frees it however the call
-   ends), except that a block of SYMMEX_PROBE_BYTES or more is first
-   tried with malloc and freed at once (nothing is held outside the
-   hook, and no user code runs in between), so that one that cannot be
-   had comes back as NULL:
-   the core then stops with SYM_ENOMEM, said with the block's size and
-   the solver's name (mxMalloc's own error names the gateway) */
+   ends); a block of SYMMEX_PROBE_BYTES or more that cannot be had comes
+   back as NULL (symmex_malloc_or_null): the core then stops with
+   SYM_ENOMEM, said with the block's size and the solver's name
+   (mxMalloc's own error names the gateway) */
 static void *
 core_alloc (size_t nbytes)
 {
-  if (nbytes >= SYMMEX_PROBE_BYTES)
-    {
-      void *p = malloc (nbytes);
-      if (! p)
-        {
-          symmex_alloc_failed = nbytes;
-          return NULL;
-        }
-      free (p);
-    }
-  return mxMalloc (nbytes);
+  if (nbytes < SYMMEX_PROBE_BYTES)
+    return mxMalloc (nbytes);
+  void *p = symmex_malloc_or_null (nbytes);
+  if (! p)
+    symmex_alloc_failed = nbytes;
+  return p;
 }
 
 void

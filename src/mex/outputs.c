@@ -7,7 +7,6 @@
 #include "symmex.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 /* OutputFcn's stop flag as `if (stop)` takes it (as ode45 does): true
@@ -150,18 +149,15 @@ row_room (symmex_ctx *c)
         return 0;
       c->blkcap = cap;
     }
-  /* tried with malloc and freed at once first, as the core's large
-     blocks (entry.c), so that one that cannot be had is told as the
-     output's (mxMalloc would raise its own error) */
-  const size_t nb = c->crows * sizeof (double) * c->n;
-  void *p = malloc (nb);
-  if (! p)
+  /* one that cannot be had is told as the output's (mxMalloc would
+     raise its own error) */
+  double *b = symmex_malloc_or_null (c->crows * sizeof (double) * c->n);
+  if (! b)
     {
       c->oom = 1;
       return 0;
     }
-  free (p);
-  c->yblk[c->nblk++] = mxMalloc (nb);
+  c->yblk[c->nblk++] = b;
   return 1;
 }
 

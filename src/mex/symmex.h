@@ -63,6 +63,9 @@ extern const symmex_method *const symmex_methods[];
 /* the size of a block of the core's that could not be allocated in this
    call (0: none); blocks of SYMMEX_PROBE_BYTES or more are tried first */
 #define SYMMEX_PROBE_BYTES ((size_t) 64 << 20)
+/* mxMalloc (nbytes), or NULL when the block cannot be had (mxMalloc
+   itself would raise an error) */
+void *symmex_malloc_or_null (size_t nbytes);
 /* the rows of the output are kept in blocks of about this many bytes */
 #define SYMMEX_ROW_BLOCK ((size_t) 1 << 20)
 extern size_t symmex_alloc_failed;
