@@ -708,8 +708,14 @@ spvi_jac_p (spvi_core *c, int j, const double *dy, double *out)
   const spvi_stages *g = c->sg;
   if (g && g->sparse)
     {
-      sym_csc_mv (&g->Js, dy, g->wv);
-      memcpy (out, g->wv + d, (size_t) d * sizeof (double));
+      /* J's p rows only */
+      const sym_csc *J = &g->Js;
+      memset (out, 0, (size_t) d * sizeof (double));
+      for (size_t l = 0; l < nn; l++)
+        if (dy[l] != 0.0)
+          for (int e = J->colptr[l]; e < J->colptr[l + 1]; e++)
+            if (J->rowind[e] >= d)
+              out[J->rowind[e] - d] += J->val[e] * dy[l];
       return;
     }
   const double *A = g ? g->J : spvi_A (c, j);
