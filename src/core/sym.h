@@ -464,6 +464,12 @@ typedef struct {
    (tf or one of tout) within round-off of it (16 ulps of max(|t0|, N h)),
    so that N steps of h still end on the time N h stands for; else tf. */
 double sym_fixed_end (const sym_driver_opts *o);
+/* The number of fixed steps a run of o takes (0: o has no fixed steps) */
+long sym_fixed_steps (const sym_driver_opts *o);
+/* The most rows a run of o hands to its output sink: its output times,
+   or its fixed steps' rows (Refine's included); -1 when that depends on
+   the run (adaptive steps without output times) */
+long sym_output_rows (const sym_driver_opts *o);
 
 /* Integrate sys from y0.  Returns SYM_DONE, SYM_STOP_OUTPUT,
    SYM_STOP_EVENT or a status < 0 (rows handed to the output sink so far
@@ -471,6 +477,50 @@ double sym_fixed_end (const sym_driver_opts *o);
 int sym_integrate (const sym_stepper_type *type, const sym_system *sys,
                    const sym_method_opts *mopts, const sym_driver_opts *dopts,
                    const double *y0, sym_stats *stats);
+
+/* ---------------------------------------------------------------- ensemble */
+/* An ensemble: the members, runs of sym_integrate of one system from the
+   columns of y0 (n-by-members), each with its own driver options (its
+   sinks, their users), stats and status.  Each member runs on a stack of
+   its own, on the caller's thread; every callback of the system and of
+   the members' driver options is called from the caller's stack, never
+   from a member's (so that a callback may raise an error that unwinds
+   the caller).  The members run in rounds: each runs on until it needs
+   f, then all their states are evaluated in one call of the system's
+   rhs_batch (when it has one; else each state by rhs, in member order).
+   A member computes exactly what its own sym_integrate would: its
+   status, rows and stats are those of a run alone; one that fails stops
+   alone.  A batch call that returns a failure is made again member by
+   member, so that each gets the status of its own states. */
+typedef struct {
+  int members;
+  const double *y0;
+  const sym_driver_opts *dopts;   /* members of them */
+  sym_stats *stats;               /* members of them, or NULL */
+  int *status;                    /* members of them: sym_integrate's */
+  /* optional: after each round, from the caller's stack: 0 to go on, 1
+     to stop every member at its next row (its output then returns 1),
+     < 0 for an error (the same, returning that) */
+  int (*round) (void *user);
+  void *round_user;
+  size_t stack_bytes;             /* a member's stack; 0: SYM_ENS_STACK */
+  /* the members' output, event and dense sinks may be called from
+     their own stacks (they call nothing that may raise an error): no
+     switch for a row */
+  int direct_sinks;
+  /* at most this many members at once (0: all): a member starts when
+     another has ended, and only the ones running hold a stack and a
+     stepper; the round callback sees the members running in lockstep
+     only when all of them are */
+  int max_live;
+  long nbatch;                    /* out: calls of rhs_batch */
+  long nrounds;                   /* out: rounds */
+} sym_ensemble_opts;
+
+/* Returns SYM_SUCCESS once every member has ended (each one's end in
+   status), or SYM_EBADINPUT, SYM_ENOMEM (no member ran). */
+int sym_ensemble (const sym_stepper_type *type, const sym_system *sys,
+                  const sym_method_opts *mopts, sym_ensemble_opts *e);
 
 #ifdef __cplusplus
 }

@@ -207,4 +207,14 @@
 /* steps of the same size, up to the round-off of fixed steps */
 #define SYM_SAME_STEP 1e-10
 
+/* the stack of an ensemble's member: the deepest a run goes (the
+   stepper, LAPACK, the driver) is far below this; only the pages
+   touched become resident */
+#define SYM_ENS_STACK ((size_t) 256 << 10)
+/* the members of an ensemble that run at once (without an OutputFcn,
+   which needs them all): enough for batches where a call of FCN costs
+   little per state, few enough that their steppers and stacks (some
+   tens of KB each) stay far below the output of a long run */
+#define SYM_ENS_LIVE 1024
+
 #endif

@@ -160,10 +160,7 @@ run_start (sym_run *r)
       else
         {
           r->hfix = o->h_fixed;
-          double ratio = fabs (o->tf - o->t0) / r->hfix;
-          r->nfixed = (long) ceil (ratio - SYM_FIXED_FIT * fmax (1.0, ratio));
-          if (r->nfixed < 1)
-            r->nfixed = 1;
+          r->nfixed = sym_fixed_steps (o);
         }
       return SYM_SUCCESS;
     }

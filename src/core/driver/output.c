@@ -81,6 +81,27 @@ sym_output_step (sym_run *r, double t, double h, double tnew, const double *ynew
   return SYM_SUCCESS;
 }
 
+long
+sym_fixed_steps (const sym_driver_opts *o)
+{
+  if (o->nsteps_fixed > 0)
+    return o->nsteps_fixed;
+  if (! (o->h_fixed > 0))
+    return 0;
+  double ratio = fabs (o->tf - o->t0) / o->h_fixed;
+  long k = (long) ceil (ratio - SYM_FIXED_FIT * fmax (1.0, ratio));
+  return k < 1 ? 1 : k;
+}
+
+long
+sym_output_rows (const sym_driver_opts *o)
+{
+  if (o->ntout > 2)
+    return o->ntout;
+  long k = sym_fixed_steps (o);
+  return k > 0 ? k * (o->refine > 1 ? o->refine : 1) + 1 : -1;
+}
+
 double
 sym_fixed_end (const sym_driver_opts *o)
 {
