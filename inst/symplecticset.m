@@ -109,6 +109,15 @@
 ## @item Dense
 ## @qcode{"on"}: @code{sol} keeps each step's dense output, which
 ## @code{symdeval} evaluates at any time.  Default @qcode{"off"}.
+## @item Ensemble
+## @qcode{"on"}: the columns of @var{y0} are the initial states of
+## members integrated together (outputs in @code{help odeSE}, section
+## Ensembles).  Default @qcode{"off"}.
+## @item Parallel
+## With @code{Ensemble}: the number of processes the members are split
+## across (1, the default: this one), or the connections
+## @code{pconnect} returned for servers on other machines (package
+## @code{parallel}).
 ## @end table
 ##
 ## @code{Explicit}, the 2013 odepkg name of @code{Separable}, is accepted
@@ -146,7 +155,7 @@ function opts = symplecticset (varargin)
                        "SecondOrder", "Method", "CompensatedSummation", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
                        "NewtonSystem", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
-                       "StepDensityFcn"};
+                       "StepDensityFcn", "Ensemble", "Parallel"};
   persistent odeset_fields = fieldnames (odeset ());
 
   if (nargin == 0 && nargout == 0)
@@ -171,6 +180,8 @@ function opts = symplecticset (varargin)
     printf ("              Dense:  {[\"off\"], \"on\"}\n");
     printf ("        StepControl:  {[\"standard\"], \"reversible\"}\n");
     printf ("     StepDensityFcn:  function handle, []\n");
+    printf ("           Ensemble:  {[\"off\"], \"on\"}\n");
+    printf ("           Parallel:  integer, >0, [1]; or pconnect's connections\n");
     return;
   endif
 

@@ -52,11 +52,43 @@ read_tspan (const char *name, const mxArray *arg, symmex_args *a)
   a->dir = dir;
 }
 
+/* Y0: a vector, or with Ensemble on a matrix with a column for each
+   member */
 static void
-read_y0 (const char *name, const mxArray *arg, symmex_args *a)
+read_y0 (const char *name, const mxArray *arg, int ensemble, symmex_args *a)
 {
   char buf[64];
   const mxArray *y0a = symmex_full (arg);
+  a->members = 1;
+  if (ensemble)
+    {
+      if (! is_plain_numeric (y0a) || mxIsEmpty (y0a)
+          || mxGetNumberOfDimensions (y0a) != 2)
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: with Ensemble on, Y0 must be "
+                           "a non-empty real matrix [q0; p0] with a column "
+                           "for each member, got %s", name,
+                           symmex_describe (y0a, buf, sizeof buf));
+      if (mxGetM (y0a) % 2)
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: with Ensemble on, Y0 must "
+                           "have an even number of rows [q; p], got %d",
+                           name, (int) mxGetM (y0a));
+      if (mxGetM (y0a) * mxGetN (y0a) > (size_t) 1 << 31)
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Y0 is too large (%s)", name,
+                           symmex_describe (y0a, buf, sizeof buf));
+      const double *y0 = doubles (y0a);
+      const size_t k = mxGetNumberOfElements (y0a);
+      for (size_t i = 0; i < k; i++)
+        if (! isfinite (y0[i]))
+          mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Y0 must be finite, element "
+                             "(%d, %d) is %s", name,
+                             (int) (i % mxGetM (y0a)) + 1,
+                             (int) (i / mxGetM (y0a)) + 1,
+                             SYMMEX_NUM (y0[i], "%g"));
+      a->y0 = y0;
+      a->n = (int) mxGetM (y0a);
+      a->members = (int) mxGetN (y0a);
+      return;
+    }
   if (! is_plain_numeric (y0a) || mxIsEmpty (y0a) || ! symmex_is_vector (y0a))
     {
       if (mxIsComplex (y0a))
@@ -98,7 +130,6 @@ symmex_read_args (const char *name, int nlhs, int nrhs,
                        "the name of a function, got %s", name,
                        symmex_describe_fn (a->fcn, buf, sizeof buf));
   read_tspan (name, prhs[1], a);
-  read_y0 (name, prhs[2], a);
   /* OPTS is a struct or []; anything else in its place is the first
      parameter, as in the 2013 form NAME (fcn, tspan, y0, p1, ...) */
   const int has_opts = nrhs > 3 && (mxIsStruct (prhs[3])
@@ -106,4 +137,8 @@ symmex_read_args (const char *name, int nlhs, int nrhs,
   a->opts = has_opts ? prhs[3] : NULL;
   a->nextra = nrhs > 3 ? nrhs - 3 - has_opts : 0;
   a->extra = prhs + 3 + has_opts;
+  const mxArray *ens = a->opts && mxIsStruct (a->opts)
+                       ? symmex_field (name, a->opts, "Ensemble") : NULL;
+  read_y0 (name, prhs[2], ens ? symmex_on_off (name, ens, "Ensemble") : 0,
+           a);
 }

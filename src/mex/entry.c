@@ -49,6 +49,7 @@ driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
 }
 
 size_t symmex_alloc_failed;
+int symmex_in_ensemble;
 
 void *
 symmex_malloc_or_null (size_t nbytes)
@@ -70,7 +71,7 @@ symmex_malloc_or_null (size_t nbytes)
 static void *
 core_alloc (size_t nbytes)
 {
-  if (nbytes < SYMMEX_PROBE_BYTES)
+  if (nbytes < SYMMEX_PROBE_BYTES && ! symmex_in_ensemble)
     return mxMalloc (nbytes);
   void *p = symmex_malloc_or_null (nbytes);
   if (! p)
@@ -84,6 +85,7 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
 {
   const char *name = m->name;
   symmex_alloc_failed = 0;
+  symmex_in_ensemble = 0;
   sym_set_allocator (core_alloc, mxFree);
 
   symmex_args a;
@@ -99,6 +101,7 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
 
   const sym_stepper_type *type = m->stepper ? m->stepper (name, own, &o)
                                  : *m->type;
+  symmex_ensemble_check (name, &a, &o, nlhs);
   sym_system sys;
   symmex_ctx *c = symmex_problem (name, &a, &o, m->needs_newton (own),
                                   m->second_order && m->second_order (own),
@@ -125,6 +128,12 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
                             "no output for TSPAN beyond that", name, tend);
     }
 
+  if (o.ensemble)
+    {
+      symmex_ensemble (m, own, type, &a, &o, c, &sys, &mo, &dopt, nlhs,
+                       plhs);
+      return;
+    }
   sym_stats st;
   int status = sym_integrate (type, &sys, &mo, &dopt, a.y0, &st);
   /* the probe of FCN at (t0, y0), and of its Vectorized form */

@@ -368,6 +368,8 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   o->reversible = (v = symmex_field (solver, opts, "StepControl"))
                   ? symmex_word (solver, v, "StepControl", controls) : 0;
   o->densityfcn = function_opt (solver, opts, "StepDensityFcn");
+  o->ensemble = (v = symmex_field (solver, opts, "Ensemble"))
+                ? symmex_on_off (solver, v, "Ensemble") : 0;
   parse_steps (solver, opts, o);
 
   /* odeset fields that would change the problem solved: not taken (a
@@ -480,7 +482,7 @@ static const char *const odeset_names[] = {
 static const char *const common_names[] = {
   "TimeStepSize", "TimeStepNumber", "HamiltonianHessFcn", "NewtonTol",
   "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", "StepControl",
-  "StepDensityFcn", NULL
+  "StepDensityFcn", "Ensemble", "Parallel", NULL
 };
 
 /* The edit distance of a and b, without regard to case */

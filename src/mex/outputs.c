@@ -63,9 +63,13 @@ symmex_outputfcn (symmex_ctx *c, const double *t, int nt, const double *y,
     {
       ta = mxCreateDoubleMatrix (nt, 1, mxREAL);
       memcpy (mxGetPr (ta), t, sizeof (double) * nt);
-      ya = mxCreateDoubleMatrix (nsel, 1, mxREAL);
-      for (int i = 0; i < nsel; i++)
-        mxGetPr (ya)[i] = y[o->outputsel ? o->outputsel[i] : i];
+      /* an ensemble's: each member's OutputSel in turn */
+      const int K = c->members > 1 ? c->members : 1;
+      ya = mxCreateDoubleMatrix ((size_t) nsel * K, 1, mxREAL);
+      for (int j = 0; j < K; j++)
+        for (int i = 0; i < nsel; i++)
+          mxGetPr (ya)[(size_t) j * nsel + i]
+            = y[(size_t) j * c->n + (o->outputsel ? o->outputsel[i] : i)];
     }
   c->oargs[1] = ta;
   c->oargs[2] = ya;

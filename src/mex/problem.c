@@ -223,6 +223,7 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
   symmex_ctx *c = mxCalloc (1, sizeof (symmex_ctx));
   c->solver = solver;
   c->n = n;
+  c->members = a->members;
   c->d = n / 2;
   c->second_order = second_order;
   c->nf = second_order ? c->d : n;

@@ -79,7 +79,8 @@ typedef struct {
   int ntspan;
   double dir;                 /* the sign of tf - t0 */
   const double *y0;
-  int n;                      /* numel (y0) = 2d */
+  int n;                      /* numel (y0) = 2d (rows, in an ensemble) */
+  int members;                /* Ensemble: the columns of Y0; else 1 */
   const mxArray *opts;        /* OPTS, or NULL */
   int nextra;                 /* P1, ... */
   const mxArray *const *extra;
@@ -123,6 +124,7 @@ typedef struct symmex_opts_s {
   int dense;                  /* sol carries the dense output */
   int reversible;             /* StepControl "reversible" */
   const mxArray *densityfcn;  /* StepDensityFcn, or NULL */
+  int ensemble;               /* Ensemble: the columns of Y0 are members */
 } symmex_opts;
 
 /* Parse OPTS (an odeset struct, a plain struct, or []) for a problem of
@@ -148,9 +150,10 @@ int symmex_word (const char *solver, const mxArray *v, const char *name,
 
 /* The user's functions as the core's callbacks, and what the run collects
    for the outputs */
-typedef struct {
+typedef struct symmex_ctx_s {
   const char *solver;
   int d, n;
+  int members;               /* OutputFcn's y holds this many states */
   /* SecondOrder: FCN takes q and returns a (nf = d values), f = [v; a];
      else nf = n */
   int second_order, nf;
@@ -276,6 +279,21 @@ int symmex_outputfcn (symmex_ctx *c, const double *t, int nt,
 void symmex_outputs (const symmex_method *m, const void *own,
                      symmex_ctx *c, const sym_stats *st,
                      const char *jac_used, int nlhs, mxArray *plhs[]);
+
+/* ensemble.c: the run of an ensemble (Ensemble on): its members by
+   sym_ensemble, its outputs and messages, in place of a single run's */
+void symmex_ensemble (const symmex_method *m, const void *own,
+                      const sym_stepper_type *type, const symmex_args *a,
+                      const symmex_opts *o, symmex_ctx *c,
+                      const sym_system *sys, const sym_method_opts *mo,
+                      const sym_driver_opts *dopt, int nlhs, mxArray *plhs[]);
+/* an ensemble's outputs need shared times: an error when they have none */
+void symmex_ensemble_check (const char *name, const symmex_args *a,
+                            const symmex_opts *o, int nlhs);
+/* an ensemble runs: every allocation of the core is tried first
+   (symmex_malloc_or_null), since an error raised on a member's stack
+   could not unwind */
+extern int symmex_in_ensemble;
 
 /* ------------------------------------------------------------ messages */
 /* The warning of a run that could not go on (or the error it is), after

@@ -1,0 +1,742 @@
+/* Copyright (C) 2026 The symplectic developers
+   SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
+
+/* ensemble.c -- a run of an ensemble (Ensemble on): the columns of Y0
+   are members, integrated together by sym_ensemble (one batch call of
+   FCN for all members' states with Vectorized), each exactly as its own
+   run.  Its outputs:
+   - [t, Y, te, ye, ie]: the rows on the grid the members share (fixed
+     steps, or output times), Y numel (t) x n x members, written in place
+     as the members go; a member that stopped early is NaN from there
+     (the row of a terminal event, off the grid, is in ye only); ie has
+     two columns, the event's index and the member's;
+   - sol: a struct array, sol(k) member k's as its own run gives it;
+   - OutputFcn: at each row of the grid once every member still running
+     has reached it, with the column of all members' states (OutputSel's
+     components of member 1, then of member 2, ...);
+   - Stats: the members' counters summed; warnings name the member. */
+#include "symmex.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* a member's status while it runs */
+#define RUNNING INT_MIN
+/* the members whose own warnings are given; the rest are counted */
+#define WARN_MEMBERS 5
+
+typedef struct ens_out ens_out;
+typedef struct {
+  ens_out *E;
+  int k;
+} member_ref;
+
+struct ens_out {
+  symmex_ctx *c;
+  const symmex_opts *o;
+  int K, n;
+  int rows_form;           /* [t, Y] (else sol, or nothing) */
+  size_t R;                /* rows allotted in Y */
+  mxArray *Ya;
+  double *Y;
+  double *tg;              /* the grid's times (NaN: not yet) */
+  unsigned char *weak;     /* tg[r] came from a row at an event's time */
+  size_t *nrows;           /* each member's rows so far */
+  /* the last rows of each member, B of them, component by component,
+     until they go into Y together: Y's rows of a member lie R apart,
+     and one row at a time would touch a page for each value */
+  double *stage;
+  size_t B, *flushed;
+  double *tlast, *tev;     /* its last row's time, its last event's */
+  symmex_ctx **mc;         /* its context: events, sol's rows (made
+                              when first needed, member_ctx) */
+  const symmex_opts *om;   /* the options of the members' contexts */
+  member_ref *ref;
+  int *status;
+  size_t emitted;          /* rows handed to OutputFcn */
+  long stop_row;           /* the row OutputFcn stopped at, or -1 */
+  double *orow;            /* n x K: a row of every member */
+};
+
+/* ------------------------------------------------------------ sinks */
+/* Member k's context: the shared callbacks' arrays, rows and events of
+   its own, no OutputFcn (the ensemble's is called here).  Made on first
+   use, possibly on the member's stack (an allocation there must not
+   raise an error): NULL when there is no memory. */
+static symmex_ctx *
+member_ctx (ens_out *E, int k)
+{
+  if (E->mc[k])
+    return E->mc[k];
+  symmex_ctx *mc = symmex_malloc_or_null (sizeof *mc);
+  if (! mc)
+    return NULL;
+  *mc = *E->c;
+  mc->o = E->om;
+  mc->members = 1;
+  mc->tbuf = NULL;
+  mc->yblk = NULL;
+  mc->nrows = mc->cap = mc->crows = mc->nblk = mc->blkcap = 0;
+  mc->te = mc->ye = NULL;
+  mc->ie = NULL;
+  mc->nev = mc->evcap = 0;
+  mc->dt = mc->dy = NULL;
+  mc->nsteps = mc->dcap = 0;
+  mc->hbuf = NULL;
+  mc->oom = 0;
+  E->mc[k] = mc;
+  return mc;
+}
+
+/* member k's staged rows into Y */
+static void
+flush (ens_out *E, int k)
+{
+  const int n = E->n;
+  const size_t f = E->flushed[k], cnt = E->nrows[k] - f;
+  const double *st = E->stage + (size_t) k * n * E->B;
+  for (int i = 0; i < n && cnt; i++)
+    memcpy (E->Y + f + E->R * ((size_t) i + (size_t) n * k), st + i * E->B,
+            cnt * sizeof (double));
+  E->flushed[k] = E->nrows[k];
+}
+
+/* component i of member k's row r (in Y or still staged) */
+static double
+row_value (const ens_out *E, int k, size_t r, int i)
+{
+  const int n = E->n;
+  const size_t f = E->flushed[k];
+  if (r < f)
+    return E->Y[r + E->R * ((size_t) i + (size_t) n * k)];
+  return E->stage[(size_t) k * n * E->B + (size_t) i * E->B + (r - f)];
+}
+
+/* [t, Y]: member k's row r into Y(r, :, k), through its stage */
+static int
+ens_row (double t, const double *y, void *user)
+{
+  member_ref *mr = user;
+  ens_out *E = mr->E;
+  const int k = mr->k, n = E->n;
+  const size_t r = E->nrows[k];
+  if (r >= E->R)
+    return -1;
+  const size_t j = r - E->flushed[k];
+  double *st = E->stage + (size_t) k * n * E->B + j;
+  for (int i = 0; i < n; i++)
+    st[(size_t) i * E->B] = y[i];
+  /* a row at an event's time may be a terminal event's, off the grid */
+  const int at_event = t == E->tev[k];
+  if (isnan (E->tg[r]) || (E->weak[r] && ! at_event))
+    {
+      E->tg[r] = t;
+      E->weak[r] = (unsigned char) at_event;
+    }
+  E->tlast[k] = t;
+  E->nrows[k] = r + 1;
+  if (j + 1 == E->B)
+    flush (E, k);
+  return 0;
+}
+
+/* the events function is the shared context's; the user pointer the
+   driver passes to it and to the event sink is the member's */
+static int
+ens_events (double t, const double *y, double *value, int *isterminal,
+            int *direction, void *user)
+{
+  member_ref *mr = user;
+  return symmex_cb_events (t, y, value, isterminal, direction, mr->E->c);
+}
+
+static int
+ens_event (double te, const double *ye, int ie, void *user)
+{
+  member_ref *mr = user;
+  symmex_ctx *mc = member_ctx (mr->E, mr->k);
+  mr->E->tev[mr->k] = te;
+  return mc ? symmex_sink_event (te, ye, ie, mc) : -1;
+}
+
+/* ------------------------------------------------------------ OutputFcn */
+/* The time of row r of the grid, or NaN */
+static double
+grid_t (const ens_out *E, size_t r)
+{
+  if (E->rows_form)
+    return E->tg[r];
+  double t = NAN;
+  for (int k = 0; k < E->K; k++)
+    if (E->mc[k]->nrows > r)
+      {
+        t = E->mc[k]->tbuf[r];
+        if (t != E->tev[k])
+          break;
+      }
+  return t;
+}
+
+/* Member k's state at row r (time t) into y, or NaN when it has none
+   (it ended before, or its row r is a terminal event's) */
+static void
+member_row (const ens_out *E, int k, size_t r, double t, double *y)
+{
+  const int n = E->n;
+  if (E->rows_form && r < E->nrows[k]
+      && ! (E->status[k] == SYM_STOP_EVENT && r + 1 == E->nrows[k]
+            && E->tlast[k] == E->tev[k]))
+    {
+      for (int i = 0; i < n; i++)
+        y[i] = row_value (E, k, r, i);
+      return;
+    }
+  if (! E->rows_form && r < E->mc[k]->nrows && E->mc[k]->tbuf[r] == t)
+    {
+      memcpy (y, symmex_row (E->mc[k], r), sizeof (double) * n);
+      return;
+    }
+  for (int i = 0; i < n; i++)
+    y[i] = NAN;
+}
+
+/* After each round: OutputFcn at the rows every running member has
+   reached (all rows once they have all ended) */
+static int
+ens_round (void *user)
+{
+  ens_out *E = user;
+  if (! E->o->outputfcn)
+    return 0;
+  size_t done_rows = (size_t) -1, most = 0;
+  for (int k = 0; k < E->K; k++)
+    {
+      size_t nr = E->rows_form ? E->nrows[k] : E->mc[k]->nrows;
+      most = nr > most ? nr : most;
+      if (E->status[k] == RUNNING && nr < done_rows)
+        done_rows = nr;
+    }
+  if (done_rows == (size_t) -1)
+    done_rows = most;
+  /* the first row is OutputFcn's "init" */
+  if (E->emitted == 0)
+    E->emitted = 1;
+  for (size_t r = E->emitted; r < done_rows; r++)
+    {
+      double t = grid_t (E, r);
+      for (int k = 0; k < E->K; k++)
+        member_row (E, k, r, t, E->orow + (size_t) k * E->n);
+      E->emitted = r + 1;
+      if (symmex_outputfcn (E->c, &t, 1, E->orow, ""))
+        {
+          E->stop_row = (long) r;
+          return 1;
+        }
+    }
+  return 0;
+}
+
+/* ------------------------------------------------------------ outputs */
+/* [t, Y]: the terminal events' rows dropped, the rows after a member's
+   end NaN, Y cut to the rows of t; events by member, then time */
+static void
+rows_outputs (ens_out *E, int nlhs, mxArray *plhs[])
+{
+  const int K = E->K, n = E->n;
+  const size_t R = E->R;
+  size_t Rt = 0;
+  for (int k = 0; k < K; k++)
+    {
+      flush (E, k);
+      if (E->status[k] == SYM_STOP_EVENT && E->nrows[k] > 0
+          && E->tlast[k] == E->tev[k])
+        E->nrows[k]--;
+      Rt = E->nrows[k] > Rt ? E->nrows[k] : Rt;
+    }
+  if (E->stop_row >= 0 && (size_t) E->stop_row + 1 < Rt)
+    Rt = (size_t) E->stop_row + 1;
+  double *Y = E->Y;
+  for (int k = 0; k < K; k++)
+    for (int i = 0; i < n; i++)
+      {
+        double *col = Y + R * ((size_t) i + (size_t) n * k);
+        for (size_t r = E->nrows[k]; r < Rt; r++)
+          col[r] = NAN;
+      }
+  if (Rt < R)
+    {
+      /* Y (1:Rt, :, :), by Octave (the one copy of Y, when members
+         ended early) */
+      mxArray *in[4] = { E->Ya, mxCreateDoubleScalar ((double) Rt),
+                         mxCreateDoubleScalar (n), mxCreateDoubleScalar (K) };
+      mxArray *out[1] = { NULL };
+      mexCallMATLAB (1, out, 4, in, "resize");
+      for (int i = 0; i < 4; i++)
+        mxDestroyArray (in[i]);
+      E->Ya = out[0];
+    }
+  plhs[0] = mxCreateDoubleMatrix (Rt, 1, mxREAL);
+  if (Rt)
+    memcpy (mxGetPr (plhs[0]), E->tg, Rt * sizeof (double));
+  plhs[1] = E->Ya;
+  if (nlhs <= 2)
+    return;
+  const double tend = Rt ? E->tg[Rt - 1] : NAN;
+  size_t nev = 0;
+  for (int k = 0; k < K; k++)
+    nev += E->mc[k] ? E->mc[k]->nev : 0;
+  mxArray *te = mxCreateDoubleMatrix (nev ? nev : 0, nev ? 1 : 0, mxREAL);
+  mxArray *ye = mxCreateDoubleMatrix (nev, nev ? n : 0, mxREAL);
+  mxArray *ie = mxCreateDoubleMatrix (nev, nev ? 2 : 0, mxREAL);
+  size_t e = 0;
+  for (int k = 0; k < K; k++)
+    {
+      const symmex_ctx *m = E->mc[k];
+      for (size_t j = 0; m && j < m->nev; j++)
+        {
+          /* none beyond t(end) when OutputFcn stopped the run */
+          if (E->stop_row >= 0 && Rt
+              && (E->tg[Rt - 1] - E->tg[0]) * (m->te[j] - tend) > 0)
+            continue;
+          mxGetPr (te)[e] = m->te[j];
+          for (int i = 0; i < n; i++)
+            mxGetPr (ye)[e + nev * i] = m->ye[j * n + i];
+          mxGetPr (ie)[e] = m->ie[j] + 1;
+          mxGetPr (ie)[e + nev] = k + 1;
+          e++;
+        }
+    }
+  if (e < nev)
+    {
+      /* the dropped ones: the kept rows moved up */
+      for (int i = 0; i < n; i++)
+        memmove (mxGetPr (ye) + e * i, mxGetPr (ye) + nev * i,
+                 e * sizeof (double));
+      memmove (mxGetPr (ie) + e, mxGetPr (ie) + nev, e * sizeof (double));
+      mxSetM (te, e);
+      mxSetM (ye, e);
+      mxSetM (ie, e);
+      if (e == 0)
+        {
+          mxSetN (te, 0);
+          mxSetN (ye, 0);
+          mxSetN (ie, 0);
+        }
+    }
+  plhs[2] = te;
+  if (nlhs > 3)
+    plhs[3] = ye;
+  else
+    mxDestroyArray (ye);
+  if (nlhs > 4)
+    plhs[4] = ie;
+  else
+    mxDestroyArray (ie);
+}
+
+/* sol: 1 x K, sol(k) as member k's own run returns it */
+static mxArray *
+sol_outputs (ens_out *E, const symmex_method *m, const void *own,
+             const sym_stats *st)
+{
+  mxArray *all = NULL;
+  for (int k = 0; k < E->K; k++)
+    {
+      char jac_used[160];
+      symmex_jac_used (E->mc[k], &st[k], jac_used, sizeof jac_used);
+      mxArray *s = NULL;
+      symmex_outputs (m, own, E->mc[k], &st[k], jac_used, 1, &s);
+      if (! all)
+        all = mxCreateStructMatrix (1, E->K, 0, NULL);
+      for (int f = 0; f < mxGetNumberOfFields (s); f++)
+        {
+          const char *name = mxGetFieldNameByNumber (s, f);
+          if (mxGetFieldNumber (all, name) < 0)
+            mxAddField (all, name);
+          mxSetField (all, k, name, mxGetFieldByNumber (s, 0, f));
+          mxSetFieldByNumber (s, 0, f, NULL);
+        }
+      mxDestroyArray (s);
+    }
+  return all;
+}
+
+/* ------------------------------------------------------------ messages */
+static void
+report (const symmex_method *m, const void *own, const symmex_opts *o,
+        const symmex_args *a, ens_out *E, const sym_stats *st)
+{
+  int warned = 0, more = 0, first_more = 0;
+  for (int k = 0; k < E->K; k++)
+    {
+      const int s = E->status[k];
+      /* an OutputFcn stop is the ensemble's, said once below */
+      if (s == SYM_STOP_OUTPUT && E->stop_row >= 0 && ! st[k].sep_broken)
+        continue;
+      if ((s == SYM_DONE || s == SYM_STOP_EVENT) && ! st[k].sep_broken)
+        continue;
+      if (warned == WARN_MEMBERS && s != SYM_ENOMEM && s != SYM_EOUTPUT)
+        {
+          if (! more++)
+            first_more = k + 1;
+          continue;
+        }
+      char name[96];
+      snprintf (name, sizeof name, "%s: member %d", m->name, k + 1);
+      symmex_method mk = *m;
+      mk.name = name;
+      symmex_ctx *mc = member_ctx (E, k);
+      if (! mc)
+        mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory",
+                           m->name);
+      if (E->rows_form)
+        {
+          /* its last row, for the message */
+          mc->tbuf = &E->tlast[k];
+          mc->nrows = E->nrows[k] > 0;
+        }
+      symmex_report (&mk, own, o, a, mc, &st[k], s == SYM_STOP_OUTPUT
+                                                   ? SYM_DONE : s);
+      warned++;
+    }
+  if (more)
+    mexWarnMsgIdAndTxt ("symplectic:members", "%s: %d more members stopped "
+                        "early or drew a warning (the first of them is "
+                        "member %d); sol(k).stats and the NaN rows of Y "
+                        "tell which", m->name, more, first_more);
+  if (E->stop_row >= 0)
+    {
+      const double t = grid_t (E, (size_t) E->stop_row);
+      if (t != a->tspan[a->ntspan - 1])
+        mexWarnMsgIdAndTxt ("symplectic:output-stop", "%s: OutputFcn asked "
+                            "to stop at t = %.15g; returning the solution up "
+                            "to there", m->name, t);
+    }
+}
+
+/* ------------------------------------------------------------ explicit steps */
+/* Explicit fixed steps act on each component alone: the members stacked
+   as one system y = [q_1; ..; q_K; p_1; ..; p_K] take the same steps as
+   each alone, to the bit, and its f is one Vectorized call of the
+   members' states as columns.  No switch between members, no copy of
+   their steppers: the cheapest ensemble there is. */
+typedef struct {
+  symmex_ctx *c;
+  ens_out *E;
+  int K, d;
+  double *tk, *ym, *fm, *row;
+  size_t cap;             /* columns of ym and fm */
+} stack_ctx;
+
+static int
+stack_rhs_batch (int k, const double *t, const double *y, double *dy,
+                 void *user)
+{
+  stack_ctx *s = user;
+  const int K = s->K, d = s->d, n = 2 * d;
+  const size_t N = (size_t) d * K, cols = (size_t) k * K;
+  if (cols > s->cap)
+    {
+      mxFree (s->tk);
+      mxFree (s->ym);
+      mxFree (s->fm);
+      s->tk = mxMalloc (cols * sizeof (double));
+      s->ym = mxMalloc (cols * n * sizeof (double));
+      s->fm = mxMalloc (cols * n * sizeof (double));
+      s->cap = cols;
+    }
+  for (int j = 0; j < k; j++)
+    for (int m = 0; m < K; m++)
+      {
+        const size_t col = (size_t) j * K + m;
+        const double *yj = y + (size_t) j * 2 * N + (size_t) m * d;
+        double *c = s->ym + col * n;
+        s->tk[col] = t[j];
+        for (int i = 0; i < d; i++)
+          {
+            c[i] = yj[i];
+            c[d + i] = yj[N + i];
+          }
+      }
+  int st = symmex_cb_rhs_batch ((int) cols, s->tk, s->ym, s->fm, s->c);
+  for (int j = 0; j < k; j++)
+    for (int m = 0; m < K; m++)
+      {
+        const size_t col = (size_t) j * K + m;
+        double *dyj = dy + (size_t) j * 2 * N + (size_t) m * d;
+        const double *c = s->fm + col * n;
+        for (int i = 0; i < d; i++)
+          {
+            dyj[i] = c[i];
+            dyj[N + i] = c[d + i];
+          }
+      }
+  return st;
+}
+
+static int
+stack_rhs (double t, const double *y, double *dy, void *user)
+{
+  return stack_rhs_batch (1, &t, y, dy, user);
+}
+
+static int
+stack_row (double t, const double *y, void *user)
+{
+  stack_ctx *s = user;
+  const int K = s->K, d = s->d;
+  const size_t N = (size_t) d * K;
+  for (int m = 0; m < K; m++)
+    {
+      for (int i = 0; i < d; i++)
+        {
+          s->row[i] = y[(size_t) m * d + i];
+          s->row[d + i] = y[N + (size_t) m * d + i];
+        }
+      if (ens_row (t, s->row, &s->E->ref[m]))
+        return -1;
+    }
+  return 0;
+}
+
+/* The members as one stacked system: its status (SYM_DONE: every member
+   is done, its rows in E), its stats into st */
+static int
+run_stacked (ens_out *E, const sym_stepper_type *type, const symmex_args *a,
+             const sym_method_opts *mo, const sym_driver_opts *dopt,
+             sym_stats *st)
+{
+  const int K = E->K, d = E->n / 2;
+  const size_t N = (size_t) d * K;
+  stack_ctx s;
+  memset (&s, 0, sizeof s);
+  s.c = E->c;
+  s.E = E;
+  s.K = K;
+  s.d = d;
+  s.row = mxMalloc (E->n * sizeof (double));
+  double *y0 = mxMalloc (2 * N * sizeof (double));
+  for (int m = 0; m < K; m++)
+    for (int i = 0; i < d; i++)
+      {
+        y0[(size_t) m * d + i] = a->y0[(size_t) m * E->n + i];
+        y0[N + (size_t) m * d + i] = a->y0[(size_t) m * E->n + d + i];
+      }
+  sym_system sys;
+  memset (&sys, 0, sizeof sys);
+  sys.dim = (int) N;
+  sys.rhs = stack_rhs;
+  sys.rhs_batch = stack_rhs_batch;
+  sys.user = &s;
+  sym_driver_opts ds = *dopt;
+  ds.output = stack_row;
+  ds.output_user = &s;
+  ds.events = NULL;
+  ds.event_out = NULL;
+  ds.dense_out = NULL;
+  ds.density = NULL;
+  int status = sym_integrate (type, &sys, mo, &ds, y0, st);
+  mxFree (y0);
+  mxFree (s.row);
+  mxFree (s.tk);
+  mxFree (s.ym);
+  mxFree (s.fm);
+  return status;
+}
+
+/* ------------------------------------------------------------ the run */
+void
+symmex_ensemble_check (const char *name, const symmex_args *a,
+                       const symmex_opts *o, int nlhs)
+{
+  /* rows on shared times: fixed steps, or output times */
+  if (o->ensemble && ! symmex_fixed (o) && a->ntspan <= 2
+      && (nlhs != 1 || o->outputfcn))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: with Ensemble on and adaptive "
+                       "steps each member takes steps of its own: %s needs "
+                       "output times in TSPAN (more than two), or a fixed "
+                       "step; or ask for SOL", name,
+                       o->outputfcn || nlhs == 0 ? "OutputFcn" : "[T, Y]");
+}
+
+void
+symmex_ensemble (const symmex_method *m, const void *own,
+                 const sym_stepper_type *type, const symmex_args *a,
+                 const symmex_opts *o, symmex_ctx *c, const sym_system *sys,
+                 const sym_method_opts *mo, const sym_driver_opts *dopt,
+                 int nlhs, mxArray *plhs[])
+{
+  const char *name = m->name;
+  const int K = a->members, n = a->n;
+  const long R = sym_output_rows (dopt);
+  ens_out E;
+  memset (&E, 0, sizeof E);
+  E.c = c;
+  E.o = o;
+  E.K = K;
+  E.n = n;
+  E.rows_form = nlhs >= 2;
+  E.stop_row = -1;
+  E.nrows = mxCalloc (K, sizeof (size_t));
+  E.tlast = mxMalloc (K * sizeof (double));
+  E.tev = mxMalloc (K * sizeof (double));
+  E.mc = mxCalloc (K, sizeof (symmex_ctx *));
+  E.ref = mxCalloc (K, sizeof (member_ref));
+  E.status = mxMalloc (K * sizeof (int));
+  E.orow = o->outputfcn ? mxMalloc ((size_t) n * K * sizeof (double)) : NULL;
+  if (E.rows_form)
+    {
+      E.R = (size_t) R;
+      /* Y made by Octave's zeros and written in place: an array made by
+         mxCreateNumericArray is copied when it is returned, which would
+         double the peak memory of a large ensemble */
+      mxArray *in[3] = { mxCreateDoubleScalar ((double) E.R),
+                         mxCreateDoubleScalar (n), mxCreateDoubleScalar (K) };
+      mxArray *out[1] = { NULL };
+      mexCallMATLAB (1, out, 3, in, "zeros");
+      for (int i = 0; i < 3; i++)
+        mxDestroyArray (in[i]);
+      E.Ya = out[0];
+      E.Y = mxGetPr (E.Ya);
+      E.tg = mxMalloc ((E.R ? E.R : 1) * sizeof (double));
+      E.weak = mxCalloc (E.R ? E.R : 1, 1);
+      for (size_t r = 0; r < E.R; r++)
+        E.tg[r] = NAN;
+      const size_t per = (size_t) n * K * sizeof (double);
+      E.B = ((size_t) 4 << 20) / per;
+      E.B = E.B < 1 ? 1 : E.B > 64 ? 64 : E.B;
+      E.stage = mxMalloc (per * E.B);
+      E.flushed = mxCalloc (K, sizeof (size_t));
+    }
+  symmex_opts *om = mxMalloc (sizeof *om);
+  *om = *o;
+  om->outputfcn = NULL;
+  E.om = om;
+  sym_driver_opts *dk = mxMalloc (K * sizeof (sym_driver_opts));
+  sym_stats *st = mxCalloc (K, sizeof (sym_stats));
+  for (int k = 0; k < K; k++)
+    {
+      /* sol's rows are each member's context's */
+      symmex_ctx *mc = E.rows_form ? NULL : member_ctx (&E, k);
+      if (! E.rows_form && ! mc)
+        mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory",
+                           name);
+      E.ref[k].E = &E;
+      E.ref[k].k = k;
+      E.tlast[k] = NAN;
+      E.tev[k] = NAN;
+      E.status[k] = RUNNING;
+      dk[k] = *dopt;
+      dk[k].output = E.rows_form ? ens_row : symmex_sink_row;
+      dk[k].output_user = E.rows_form ? (void *) &E.ref[k] : (void *) mc;
+      dk[k].event_out = ens_event;
+      dk[k].event_user = &E.ref[k];
+      dk[k].events = dopt->events ? ens_events : NULL;
+      dk[k].dense_out = ! E.rows_form && dopt->dense_out ? symmex_sink_dense
+                        : NULL;
+      dk[k].dense_user = mc;
+    }
+  /* explicit fixed steps, Vectorized, rows only: stacked; should that
+     run fail, the members run again on their own, each to its own end */
+  const int stacked = o->vectorized && symmex_fixed (o)
+                      && ! m->needs_newton (own) && ! o->events
+                      && ! o->outputfcn && E.rows_form && K >= 2
+                      && (size_t) n * K <= INT_MAX;
+  sym_stats sst;
+  memset (&sst, 0, sizeof sst);
+  int sstatus = stacked ? run_stacked (&E, type, a, mo, dopt, &sst) : -1;
+  if (sstatus == SYM_DONE)
+    for (int k = 0; k < K; k++)
+      E.status[k] = SYM_DONE;
+  else if (stacked)
+    for (int k = 0; k < K; k++)
+      {
+        E.nrows[k] = E.flushed[k] = 0;
+        E.tlast[k] = NAN;
+      }
+  if (stacked && sstatus != SYM_DONE)
+    for (size_t r = 0; r < E.R; r++)
+      {
+        E.tg[r] = NAN;
+        E.weak[r] = 0;
+      }
+  sym_ensemble_opts eo;
+  memset (&eo, 0, sizeof eo);
+  eo.members = K;
+  eo.y0 = a->y0;
+  eo.dopts = dk;
+  eo.stats = st;
+  eo.status = E.status;
+  eo.round = ens_round;
+  eo.round_user = &E;
+  /* every sink here is plain C: called on the members' stacks */
+  eo.direct_sinks = 1;
+  /* OutputFcn sees all members at each time: all in lockstep then */
+  eo.max_live = o->outputfcn ? 0 : SYM_ENS_LIVE;
+  symmex_in_ensemble = 1;
+  int s = sstatus == SYM_DONE ? SYM_SUCCESS
+          : sym_ensemble (type, sys, mo, &eo);
+  symmex_in_ensemble = 0;
+  if (s)
+    mexErrMsgIdAndTxt (s == SYM_ENOMEM ? "Octave:out-of-memory"
+                       : "symplectic:internal", "%s: %s for the ensemble "
+                       "of %d members", name, s == SYM_ENOMEM
+                       ? "out of memory" : "internal failure", K);
+  if (o->outputfcn)
+    symmex_outputfcn (c, NULL, 0, NULL, "done");
+
+  sym_stats sum;
+  memset (&sum, 0, sizeof sum);
+  sum.cnt.nrhs = c->probe_calls;
+  sum.cnt.nrhs_states = c->probe_states;
+  sum.cnt.njac = c->probe_jac;
+  for (int k = 0; k < K; k++)
+    {
+      long *to = (long *) &sum.cnt;
+      const long *from = (const long *) &st[k].cnt;
+      for (size_t i = 0; i < sizeof sum.cnt / sizeof (long); i++)
+        to[i] += from[i];
+      if (st[k].jac_dropped && ! sum.jac_dropped)
+        {
+          sum.jac_dropped = 1;
+          sum.jac_dropped_t = st[k].jac_dropped_t;
+        }
+      sum.rhs_jac_used |= st[k].rhs_jac_used;
+    }
+  if (sstatus == SYM_DONE)
+    {
+      /* one run did it all: its counts, its warnings (Separable) */
+      sum.cnt = sst.cnt;
+      sum.cnt.nrhs += c->probe_calls;
+      sum.cnt.nrhs_states += c->probe_states;
+      symmex_report (m, own, o, a, c, &sst, SYM_DONE);
+    }
+  else
+    report (m, own, o, a, &E, st);
+  if (o->stats)
+    {
+      char jac_used[160];
+      symmex_jac_used (c, &sum, jac_used, sizeof jac_used);
+      if (sstatus == SYM_DONE)
+        mexPrintf ("Members: %d, integrated as one system of %d "
+                   "components (explicit fixed steps, Vectorized); its "
+                   "counts:\n", K, n * K);
+      else if (o->vectorized)
+        mexPrintf ("Members: %d, summed below (%ld Vectorized calls of FCN "
+                   "for all of them at once)\n", K, eo.nbatch);
+      else
+        mexPrintf ("Members: %d, summed below\n", K);
+      symmex_print_stats (&sum, jac_used, c);
+    }
+  if (E.rows_form)
+    rows_outputs (&E, nlhs, plhs);
+  else if (nlhs == 1)
+    {
+      if (o->hamiltonian)
+        for (int k = 0; k < K; k++)
+          symmex_energy (E.mc[k]);
+      plhs[0] = sol_outputs (&E, m, own, st);
+    }
+}
