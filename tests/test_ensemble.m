@@ -8,15 +8,17 @@
 ## adaptive members (each with its own steps) too, in the sol form.
 
 %!function dy = kep (t, y)
-%!  ## Kepler, vectorized: a column per state
-%!  r = sqrt (y(1,:).^2 + y(2,:).^2);
+%!  ## Kepler, vectorized: a column per state; no power (.^), which
+%!  ## Octave computes for a lone value by pow and for an array by
+%!  ## products, now and then a bit apart: a column alone and in a batch
+%!  ## give the same numbers
+%!  r = sqrt (y(1,:) .* y(1,:) + y(2,:) .* y(2,:));
 %!  r3 = r .* r .* r;
 %!  dy = [y(3,:); y(4,:); -y(1,:) ./ r3; -y(2,:) ./ r3];
 %!endfunction
 
 %!function dy = kep_pow (t, y)
-%!  ## the same with r.^3: Octave computes a lone value's power by pow and
-%!  ## an array's by products, so a column alone and in a batch differ
+%!  ## the same with powers: a column alone and in a batch differ
 %!  r = sqrt (y(1,:).^2 + y(2,:).^2);
 %!  dy = [y(3,:); y(4,:); -y(1,:) ./ r.^3; -y(2,:) ./ r.^3];
 %!endfunction
@@ -175,6 +177,51 @@
 %!   [t1, y1] = odeSV (@kep_scaled, [0 2], Y0(:,k), o1, 1.5);
 %!   assert (isequal (t, t1) && isequal (Y(:,:,k), y1));
 %! endfor
+
+%!function a = kep_acc (t, q)
+%!  ## Kepler's acceleration (SecondOrder), vectorized
+%!  r = sqrt (q(1,:) .* q(1,:) + q(2,:) .* q(2,:));
+%!  r3 = r .* r .* r;
+%!  a = [-q(1,:) ./ r3; -q(2,:) ./ r3];
+%!endfunction
+
+%!test
+%! ## explicit fixed steps with Vectorized go as one stacked system: each
+%! ## member is still its own run to the bit, in every explicit variant
+%! Y0 = kep_y0 ([0.1 0.3 0.5 0.7 0.2 0.45]);
+%! runs = {@odeSV, @kep, {"Separable", "on"}; ...
+%!         @odeSV, @kep, {"Separable", "on", "Method", "yoshida4"}; ...
+%!         @odeSV, @kep, {"Separable", "on", "CompensatedSummation", "on"}; ...
+%!         @odeSV, @kep_acc, {"SecondOrder", "on", "Method", "blanesmoan6"}; ...
+%!         @odeSE, @kep, {"Separable", "on"}; ...
+%!         @odeSE, @kep_acc, {"SecondOrder", "on"}};
+%! for i = 1:rows (runs)
+%!   [s, f, extra] = runs{i,:};
+%!   o1 = symplecticset ("TimeStepSize", 0.07, "Vectorized", "on", extra{:});
+%!   for tspan = {[0 5], linspace(0, 5, 13)}
+%!     [t, Y] = s (f, tspan{1}, Y0, symplecticset (o1, "Ensemble", "on"));
+%!     for k = [1 4 6]
+%!       [t1, y1] = s (f, tspan{1}, Y0(:,k), o1);
+%!       assert (isequal (t, t1) && isequal (Y(:,:,k), y1), "run %d member %d", i, k);
+%!     endfor
+%!   endfor
+%! endfor
+
+%!test
+%! ## a member that fails in the stacked system: the members run again on
+%! ## their own, and only that one stops
+%! Y0 = [0.5 1.0 0.3 0.2; 0 2.5 0 0.1];
+%! o1 = symplecticset ("TimeStepSize", 0.05, "Vectorized", "on", ...
+%!                     "Separable", "on");
+%! warning ("off", "symplectic:nonfinite", "local");
+%! [t, Y] = odeSV (@pend_cut, [0 10], Y0, symplecticset (o1, "Ensemble", "on"));
+%! for k = 1:4
+%!   [t1, y1] = odeSV (@pend_cut, [0 10], Y0(:,k), o1);
+%!   n = numel (t1);
+%!   assert (isequal (Y(1:n,:,k), y1));
+%!   assert (all (isnan (Y(n+1:end,:,k)(:))));
+%! endfor
+%! assert (numel (t), 201);
 
 ## ------------------------------------------------------------ Vectorized cost
 %!test

@@ -214,7 +214,8 @@
 /* the members of an ensemble that run at once (without an OutputFcn,
    which needs them all): enough for batches where a call of FCN costs
    little per state, few enough that their steppers and stacks (some
-   tens of KB each) stay far below the output of a long run */
-#define SYM_ENS_LIVE 1024
+   tens of KB each) stay in the cache and far below the output of a long
+   run (bench/NOTES.md) */
+#define SYM_ENS_LIVE 128
 
 #endif
