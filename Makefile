@@ -5,7 +5,8 @@
 #
 #   make [all]          build the MEX files (no root, no network, no valgrind)
 #   make deps           install the missing Debian packages (Octave, its
-#                       headers, LAPACK/BLAS; tools/install-deps.sh)
+#                       headers, LAPACK/BLAS, KLU, the parallel package;
+#                       tools/install-deps.sh)
 #   make deps-memory    deps, and valgrind for check-memory and valgrind
 #   make demo           deps and all, then run tools/demo.m
 #   make check          deps and all, then the whole test suite (C + Octave)

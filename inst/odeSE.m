@@ -65,6 +65,35 @@
 ## evaluates, with @code{Hamiltonian} the values H of H at x.  With no
 ## output the solution is plotted with @code{odeplot}.
 ##
+## @strong{Ensembles.}  With @code{Ensemble} @qcode{"on"}, each column of
+## @var{y0} (2d-by-K) is the initial state of a member, and the K members
+## are integrated together, each exactly as a run of its own would be:
+## with a fixed step, member k's rows equal those of a run from
+## @code{y0(:,k)} to the bit, whatever K or the order of the columns.
+## @var{y} is then numel(@var{t})-by-2d-by-K, @code{y(:,:,k)} member k's
+## rows on the times @var{t} that the members share (the fixed steps, or
+## the times of @var{tspan}); a member that stops early (a terminal
+## event, a failure) has NaN rows from there, the state at its event
+## being in @var{ye}.  @var{ie} has two columns, the event's index and
+## the member's, and the events come member by member.  @var{sol} is a
+## 1-by-K struct array, @code{sol(k)} member k's as its own run returns
+## it.  Adaptive steps are each member's own: @code{[t, y]} needs output
+## times in @var{tspan} then, or ask for @var{sol}.  With
+## @code{Vectorized} @qcode{"on"}, one call of @var{fcn} evaluates the
+## states of all members at once (a lone state comes as two equal
+## columns), so that K members cost little more than one; members are
+## to the bit as their own runs when @var{fcn} computes a column alike in
+## any batch.  Without it @var{fcn} is called for each state.  Newton's
+## method works member by member; a member that fails stops alone, with
+## a warning that names it.  @code{OutputFcn} is called at each shared
+## time once every running member has reached it, with the column of all
+## members' states (the @code{OutputSel} components of member 1, then of
+## member 2, @dots{}); @code{Stats} sums the members' counts.
+## @code{Parallel}, a number of processes, splits the members across
+## them (package @code{parallel}); given the connections of
+## @code{pconnect}, across servers on other machines.  The results are
+## the same to the bit.
+##
 ## @table @code
 ## @item TimeStepSize, TimeStepNumber
 ## Fixed step h, or a number of fixed steps.  The last step ends on tf.
@@ -115,6 +144,10 @@
 ## @code{symdeval}.
 ## @item MaxSteps
 ## Largest number of steps of a run (default: no limit).
+## @item Ensemble, Parallel
+## @qcode{"on"}: the columns of @var{y0} are members (above); the
+## processes, or the servers' connections, to split them across
+## (default 1: this process).
 ## @end table
 ##
 ## A run that cannot go on (Newton fails, @var{fcn} returns NaN or Inf,
@@ -141,7 +174,13 @@ function varargout = odeSE (varargin)
   ## The solver is the compiled gateway __odeSE__ (src/__odeSE__.c); this
   ## m-file holds its help and tests.  With no output it plots with
   ## odeplot, as ode45 does.
-  if (nargout == 0)
+  ## Parallel other than 1 shares an ensemble's members out to other
+  ## processes (private/__ensemble_parallel__.m).
+  if (nargin >= 4 && isstruct (varargin{4})
+      && __ensemble_parallel__ ("odeSE", varargin{4}))
+    [varargout{1:nargout}] = __ensemble_parallel__ ("odeSE", @__odeSE__,
+                                                    nargout, varargin{:});
+  elseif (nargout == 0)
     __odeSE__ (varargin{:});
   else
     [varargout{1:nargout}] = __odeSE__ (varargin{:});

@@ -117,6 +117,9 @@
 ## long step is found.
 ## @item Hamiltonian, Dense, MaxSteps
 ## As in @code{odeSE}.
+## @item Ensemble, Parallel
+## Many initial states at once, the columns of @var{y0}, as in
+## @code{odeSE}.
 ## @end table
 ##
 ## A run that cannot go on warns, with an identifier
@@ -148,7 +151,13 @@ function varargout = odeSPVI (varargin)
   ## The solver is the compiled gateway __odeSPVI__ (src/__odeSPVI__.c); this
   ## m-file holds its help and tests.  With no output it plots with
   ## odeplot, as ode45 does.
-  if (nargout == 0)
+  ## Parallel other than 1 shares an ensemble's members out to other
+  ## processes (private/__ensemble_parallel__.m).
+  if (nargin >= 4 && isstruct (varargin{4})
+      && __ensemble_parallel__ ("odeSPVI", varargin{4}))
+    [varargout{1:nargout}] = __ensemble_parallel__ ("odeSPVI", @__odeSPVI__,
+                                                    nargout, varargin{:});
+  elseif (nargout == 0)
     __odeSPVI__ (varargin{:});
   else
     [varargout{1:nargout}] = __odeSPVI__ (varargin{:});

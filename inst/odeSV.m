@@ -169,6 +169,9 @@
 ## the counts of @code{sol.stats}.
 ## @item Hamiltonian, Dense, MaxSteps
 ## As in @code{odeSE}.
+## @item Ensemble, Parallel
+## Many initial states at once, the columns of @var{y0}, as in
+## @code{odeSE}.
 ## @end table
 ##
 ## A run that cannot go on warns, with an identifier
@@ -211,7 +214,13 @@ function varargout = odeSV (varargin)
   ## The solver is the compiled gateway __odeSV__ (src/__odeSV__.c); this
   ## m-file holds its help and tests.  With no output it plots with
   ## odeplot, as ode45 does.
-  if (nargout == 0)
+  ## Parallel other than 1 shares an ensemble's members out to other
+  ## processes (private/__ensemble_parallel__.m).
+  if (nargin >= 4 && isstruct (varargin{4})
+      && __ensemble_parallel__ ("odeSV", varargin{4}))
+    [varargout{1:nargout}] = __ensemble_parallel__ ("odeSV", @__odeSV__,
+                                                    nargout, varargin{:});
+  elseif (nargout == 0)
     __odeSV__ (varargin{:});
   else
     [varargout{1:nargout}] = __odeSV__ (varargin{:});

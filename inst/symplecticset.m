@@ -114,10 +114,19 @@
 ## members integrated together (outputs in @code{help odeSE}, section
 ## Ensembles).  Default @qcode{"off"}.
 ## @item Parallel
-## With @code{Ensemble}: the number of processes the members are split
-## across (1, the default: this one), or the connections
-## @code{pconnect} returned for servers on other machines (package
-## @code{parallel}).
+## With @code{Ensemble} @qcode{"on"}: a positive integer P, the number of
+## local processes the members are split across (1, the default: this
+## process), or the connections @code{pconnect} returned, one process per
+## server.  The columns of @var{y0} go in min(P, K) contiguous chunks, as
+## even as possible, each run as an ensemble in another Octave process
+## (@code{parcellfun}, or the servers), and the outputs are merged: they
+## equal those of the run in this process to the bit, whatever P.  Stats
+## are printed per chunk, under its members' range; the other processes'
+## warnings are given here.  @var{fcn} and the functions it calls must
+## exist in the other processes (anonymous functions go with their
+## values, named ones must be function files on the path there).  Needs
+## Octave's package @code{parallel}; not with @code{OutputFcn}, nor
+## without outputs (the plot).
 ## @end table
 ##
 ## @code{Explicit}, the 2013 odepkg name of @code{Separable}, is accepted

@@ -8,15 +8,17 @@
 #   sh tools/install-deps.sh memory    (make deps-memory)
 #
 # Checks: octave-cli, mkoctfile, a C compiler that links against LAPACK,
-# BLAS and KLU (SuiteSparse, for sparse Jacobians); with `memory`,
-# valgrind too (only make check-memory and make valgrind need it).  When all are there it only checks (quick, no
-# network); otherwise it runs apt-get update + apt-get install once for the
-# whole set (as root, or through sudo when not root and sudo exists).
+# BLAS and KLU (SuiteSparse, for sparse Jacobians), Octave's parallel
+# package (pkg load parallel: the option Parallel and its tests); with
+# `memory`, valgrind too (only make check-memory and make valgrind need
+# it).  When all are there it only checks (quick, no network); otherwise
+# it runs apt-get update + apt-get install once for the whole set (as
+# root, or through sudo when not root and sudo exists).
 #
 # Environment: SYM_DEPS_FORCE=1 installs even if everything looks present.
 set -eu
 
-PACKAGES="octave octave-dev liblapack-dev libblas-dev libsuitesparse-dev"
+PACKAGES="octave octave-dev liblapack-dev libblas-dev libsuitesparse-dev octave-parallel"
 TOOLS="octave-cli mkoctfile"
 case "${1:-}" in
   "") ;;
@@ -50,11 +52,17 @@ check () {
     "$cc" "$tmp/k.c" -o "$tmp/k" -lklu -lsuitesparseconfig >/dev/null 2>&1 \
       || missing="$missing libsuitesparse-dev"
   fi
+  # the parallel package: that Octave can load it (it may also come from
+  # pkg install -forge, not from Debian)
+  if command -v octave-cli >/dev/null 2>&1; then
+    octave-cli --norc --no-gui --eval "pkg load parallel" </dev/null \
+      >/dev/null 2>&1 || missing="$missing octave-parallel"
+  fi
 }
 
 check
 if [ -z "$missing" ] && [ "${SYM_DEPS_FORCE:-0}" != 1 ]; then
-  echo "deps: ok ($(echo $TOOLS | sed 's/ /, /g'), LAPACK/BLAS and KLU present)"
+  echo "deps: ok ($(echo $TOOLS | sed 's/ /, /g'), LAPACK/BLAS, KLU and the parallel package present)"
   exit 0
 fi
 

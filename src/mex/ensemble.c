@@ -37,6 +37,7 @@ struct ens_out {
   symmex_ctx *c;
   const symmex_opts *o;
   int K, n;
+  int first;               /* members are named first + 1, ..., first + K */
   int rows_form;           /* [t, Y] (else sol, or nothing) */
   size_t R;                /* rows allotted in Y */
   mxArray *Ya;
@@ -304,7 +305,7 @@ rows_outputs (ens_out *E, int nlhs, mxArray *plhs[])
           for (int i = 0; i < n; i++)
             mxGetPr (ye)[e + nev * i] = m->ye[j * n + i];
           mxGetPr (ie)[e] = m->ie[j] + 1;
-          mxGetPr (ie)[e + nev] = k + 1;
+          mxGetPr (ie)[e + nev] = E->first + k + 1;
           e++;
         }
     }
@@ -380,11 +381,12 @@ report (const symmex_method *m, const void *own, const symmex_opts *o,
       if (warned == WARN_MEMBERS && s != SYM_ENOMEM && s != SYM_EOUTPUT)
         {
           if (! more++)
-            first_more = k + 1;
+            first_more = E->first + k + 1;
           continue;
         }
       char name[96];
-      snprintf (name, sizeof name, "%s: member %d", m->name, k + 1);
+      snprintf (name, sizeof name, "%s: member %d", m->name,
+                E->first + k + 1);
       symmex_method mk = *m;
       mk.name = name;
       symmex_ctx *mc = member_ctx (E, k);
@@ -546,6 +548,28 @@ run_stacked (ens_out *E, const sym_stepper_type *type, const symmex_args *a,
   return status;
 }
 
+/* The first of the members to run (0-based) and their number: all of
+   Y0's columns, or the share that the internal option __members__ =
+   [first last] (1-based) names: the Parallel option's m-code gives each
+   process its share so */
+static int
+members_range (const char *name, const symmex_args *a, int *count)
+{
+  *count = a->members;
+  const mxArray *v = a->opts && mxIsStruct (a->opts)
+                     ? symmex_field (name, a->opts, "__members__") : NULL;
+  if (! v)
+    return 0;
+  const double *r = mxIsDouble (v) && ! mxIsComplex (v)
+                    && mxGetNumberOfElements (v) == 2 ? mxGetPr (v) : NULL;
+  if (! r || ! (r[0] >= 1 && r[0] <= r[1] && r[1] <= a->members)
+      || r[0] != floor (r[0]) || r[1] != floor (r[1]))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: __members__ must be [first "
+                       "last], 1 <= first <= last <= %d", name, a->members);
+  *count = (int) (r[1] - r[0]) + 1;
+  return (int) r[0] - 1;
+}
+
 /* ------------------------------------------------------------ the run */
 void
 symmex_ensemble_check (const char *name, const symmex_args *a,
@@ -569,7 +593,16 @@ symmex_ensemble (const symmex_method *m, const void *own,
                  int nlhs, mxArray *plhs[])
 {
   const char *name = m->name;
+  /* the members to run: all, or those that __members__ = [first last]
+     names (a share of another process's ensemble, Parallel: FCN was
+     checked at the ensemble's first member, and the members keep their
+     numbers) */
+  symmex_args ar = *a;
+  const int first = members_range (name, a, &ar.members);
+  ar.y0 = a->y0 + (size_t) first * a->n;
+  a = &ar;
   const int K = a->members, n = a->n;
+  c->members = K;
   const long R = sym_output_rows (dopt);
   ens_out E;
   memset (&E, 0, sizeof E);
@@ -577,6 +610,7 @@ symmex_ensemble (const symmex_method *m, const void *own,
   E.o = o;
   E.K = K;
   E.n = n;
+  E.first = first;
   E.rows_form = nlhs >= 2;
   E.stop_row = -1;
   E.nrows = mxCalloc (K, sizeof (size_t));

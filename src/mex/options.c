@@ -482,7 +482,7 @@ static const char *const odeset_names[] = {
 static const char *const common_names[] = {
   "TimeStepSize", "TimeStepNumber", "HamiltonianHessFcn", "NewtonTol",
   "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", "StepControl",
-  "StepDensityFcn", "Ensemble", "Parallel", NULL
+  "StepDensityFcn", "Ensemble", "Parallel", "__members__", NULL
 };
 
 /* The edit distance of a and b, without regard to case */
