@@ -12,7 +12,7 @@
 ## raised in the MEX layer), errors thrown by the user's functions in the
 ## middle of a run, NaN from FCN, Newton and MaxSteps failures (warnings
 ## with partial results), SecondOrder, odeSV's methods, JPattern,
-## reversible steps, sparse Newton matrices.
+## reversible steps, sparse Newton matrices, ensembles.
 ## Returns 0 if all results were as expected, 1 otherwise (valgrind's own
 ## findings are judged by check_memory.sh).
 ## Not a test_*.m file: the test runner does not run it.
@@ -193,6 +193,28 @@ function status = memcheck_run ()
   nbad += check (numel (t) == 21 && all (isfinite (y(:))), "suzuki4", "implicit");
   nbad += expect_error (@odeSV, "Octave:invalid-input-arg", kep, [0 1], y0k, struct ("Method", "ruth3", "TimeStepSize", 0.05));
   nbad += expect_error (@odeSV, "Octave:invalid-input-arg", kep, [0 1], y0k, struct ("Method", "yoshida4"));
+  ## ensembles: members in rounds (their stacks, the batch of all their
+  ## states, events, a failing member, sol, OutputFcn and its stop),
+  ## explicit steps stacked, and a user's error raised in mid-run
+  kepv = @(t, y) [y(3:4,:); -y(1:2,:) ./ (sum (y(1:2,:) .* y(1:2,:), 1) .^ 1.5)];
+  Y0 = [y0k, y0k .* [1.1; 1; 1; 0.9], [1; 0; 0; 0]];
+  for s = {@odeSE, @odeSV, @odeSPVI}
+    name = func2str (s{1});
+    o = struct ("Ensemble", "on", "TimeStepSize", 0.05, "Vectorized", "on", ...
+                "Events", @(t, y) deal (y(2) - 0.5, 1, 0));
+    [t, Y, te, ye, ie] = s{1} (kepv, [0 2], Y0, o);
+    nbad += check (size (Y, 3) == 3 && columns (ie) == 2, name, "ensemble");
+    sol = s{1} (kepv, [0 1], Y0(:,1:2), rmfield (o, "TimeStepSize"));
+    nbad += check (numel (sol) == 2, name, "ensemble sol");
+    [t, Y] = s{1} (kepv, [0 1], Y0(:,1:2), struct ("Ensemble", "on", "TimeStepSize", 0.1, ...
+                   "OutputFcn", @(t, y, flag) ! isempty (t) && t(1) > 0.5));
+    nbad += check (t(end) < 1, name, "ensemble OutputFcn stop");
+    nbad += expect_error (s{1}, "mc:fcn", @(t, y) mc_fail_after (t, y, 0.5), [0 1], [1 0; 0 1]', ...
+                          struct ("Ensemble", "on", "TimeStepSize", 0.1));
+  endfor
+  [t, Y] = odeSV (kepv, [0 1], Y0(:,1:2), struct ("Ensemble", "on", "TimeStepSize", 0.05, ...
+                  "Vectorized", "on", "Separable", "on"));
+  nbad += check (all (isfinite (Y(:))), "odeSV", "ensemble stacked");
   ## JPattern (sparse and full), finite differences by colours
   for pat = {sparse([0 0 1 0; 0 0 0 1; 1 1 0 0; 1 1 0 0]), logical([0 0 1 0; 0 0 0 1; 1 1 0 0; 1 1 0 0])}
     sol = odeSPVI (kep, [0 1], y0k, struct ("JPattern", pat{1}, "TimeStepSize", 0.1));

@@ -25,6 +25,15 @@
 #define CO_ASAN 0
 #endif
 
+/* valgrind is told of each stack (a no-op outside it), so that it takes
+   a switch for a switch and not for a huge frame */
+#if defined (__has_include)
+#if __has_include (<valgrind/valgrind.h>)
+#include <valgrind/valgrind.h>
+#define CO_VALGRIND 1
+#endif
+#endif
+
 #if defined (__x86_64__)
 /* sym_co_swap (&save, to): pushes rbp, rbx, r12-r15 and the MXCSR and
    x87 control words (the SysV ABI's callee-saved state), stores rsp in
@@ -85,6 +94,9 @@ sym_co_init (sym_co *co, void *stack, size_t size, void (*fn) (void *),
              void *arg)
 {
   memset (co, 0, sizeof *co);
+#if defined (CO_VALGRIND)
+  co->vg_id = VALGRIND_STACK_REGISTER (stack, (char *) stack + size);
+#endif
   co->stack = stack;
   co->size = size;
   co->fn = fn;
@@ -148,4 +160,13 @@ sym_co_yield (sym_co *co)
 #if CO_ASAN
   co_asan_enter (co);
 #endif
+}
+
+void
+sym_co_release (sym_co *co)
+{
+#if defined (CO_VALGRIND)
+  VALGRIND_STACK_DEREGISTER (co->vg_id);
+#endif
+  co->stack = NULL;
 }

@@ -23,6 +23,7 @@ typedef struct {
 #else
   ucontext_t self, caller;
 #endif
+  unsigned vg_id;           /* the stack's number for valgrind */
   /* AddressSanitizer's bookkeeping of the switches */
   void *fake;
   const void *caller_bottom;
@@ -38,5 +39,7 @@ int sym_co_init (sym_co *co, void *stack, size_t size, void (*fn) (void *),
 void sym_co_resume (sym_co *co);
 /* from inside co: back to the resume that ran it */
 void sym_co_yield (sym_co *co);
+/* co's stack is no longer co's (co has finished, or never started) */
+void sym_co_release (sym_co *co);
 
 #endif

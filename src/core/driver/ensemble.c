@@ -456,6 +456,7 @@ sym_ensemble (const sym_stepper_type *type, const sym_system *sys,
               /* no context for it: it ends before its start */
               o->status[next] = SYM_ENOMEM;
               e.m[next].done = 1;
+              sym_co_release (&e.m[next].co);
               free_stack[nfree++] = j;
               live--;
             }
@@ -469,6 +470,7 @@ sym_ensemble (const sym_stepper_type *type, const sym_system *sys,
           if (m->done)
             {
               live--;
+              sym_co_release (&m->co);
               free_stack[nfree++] = stack_of[i];
             }
         }
