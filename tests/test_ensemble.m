@@ -369,7 +369,45 @@
 %! sol = odeSV (@kep, [0 2], Y0, symplecticset (o1, "Ensemble", "on", "Stats", "off"));
 %! assert ([sol.stats](2).nsteps, 20);
 
+%!function dy = kep_fail (t, y)
+%!  ## an error raised by the user's function when a member passes t = 1
+%!  if (any (t > 1))
+%!    error ("ens:fcn", "failing at t = %g", max (t));
+%!  endif
+%!  dy = kep (t, y);
+%!endfunction
+
+%!test
+%! ## an error of FCN in mid-run leaves the call with its message, from
+%! ## rounds and from the stacked system alike; the next call is whole
+%! Y0 = kep_y0 ([0.1 0.5 0.3]);
+%! for x = {{}, {"Vectorized", "on"}, {"Vectorized", "on", "Separable", "on"}}
+%!   o = symplecticset ("TimeStepSize", 0.05, "Ensemble", "on", x{1}{:});
+%!   try
+%!     [t, Y] = odeSV (@kep_fail, [0 2], Y0, o);
+%!     error ("no error");
+%!   catch err
+%!     assert (err.identifier, "ens:fcn");
+%!   end_try_catch
+%!   [t, Y] = odeSV (@kep, [0 2], Y0, o);
+%!   [t1, y1] = odeSV (@kep, [0 2], Y0(:,2), rmfield (o, "Ensemble"));
+%!   assert (isequal (Y(:,:,2), y1));
+%! endfor
+
+%!test
+%! ## the internal share of members (Parallel's): members keep their
+%! ## numbers
+%! Y0 = kep_y0 ([0.1 0.5 0.3 0.2]);
+%! o = symplecticset ("TimeStepSize", 0.05, "Ensemble", "on");
+%! [t, Y] = odeSV (@kep, [0 1], Y0, o);
+%! o.__members__ = [2 3];
+%! [t2, Y2] = odeSV (@kep, [0 1], Y0, o);
+%! assert (isequal (t2, t) && isequal (Y2, Y(:,:,2:3)));
+
 ## ------------------------------------------------------------ errors
+%!error <odeSV: __members__ must be \[first last\], 1 <= first <= last <= 2>
+%! o = symplecticset ("TimeStepSize", 0.1, "Ensemble", "on");  o.__members__ = [2 3];
+%! [t, Y] = odeSV (@kep, [0 1], kep_y0 ([0.1 0.2]), o);
 %!error <odeSV: with Ensemble on, Y0 must have an even number of rows>
 %! t = odeSV (@kep, [0 1], ones (3, 2), symplecticset ("Ensemble", "on"));
 %!error <odeSV: with Ensemble on, Y0 must be a non-empty real matrix>
