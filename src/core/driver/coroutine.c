@@ -14,6 +14,7 @@
 #define _XOPEN_SOURCE 600
 #endif
 #include "coroutine.h"
+#include "../numerics/numerics.h"
 
 #include <stdint.h>
 #include <string.h>
@@ -28,8 +29,8 @@
 /* valgrind is told of each stack (a no-op outside it), so that it takes
    a switch for a switch and not for a huge frame */
 #if defined (__has_include)
-#if __has_include (<valgrind/valgrind.h>)
-#include <valgrind/valgrind.h>
+#if __has_include (<valgrind/memcheck.h>)
+#include <valgrind/memcheck.h>
 #define CO_VALGRIND 1
 #endif
 #endif
@@ -55,8 +56,9 @@ __asm__ (".text\n"
          ".size sym_co_swap, .-sym_co_swap\n");
 #endif
 
-/* the coroutine being started, read by its first frame */
-static sym_co *co_starting;
+/* the coroutine being started, read by its first frame; the one
+   running (NULL: the caller's stack is in use) */
+static sym_co *co_starting, *co_current;
 
 #if CO_ASAN
 static void
@@ -95,6 +97,9 @@ sym_co_init (sym_co *co, void *stack, size_t size, void (*fn) (void *),
 {
   memset (co, 0, sizeof *co);
 #if defined (CO_VALGRIND)
+  /* a stack used before (by a member that has ended) is new again: not
+     the dead space below an old stack pointer */
+  VALGRIND_MAKE_MEM_UNDEFINED (stack, size);
   co->vg_id = VALGRIND_STACK_REGISTER (stack, (char *) stack + size);
 #endif
   co->stack = stack;
@@ -130,19 +135,44 @@ sym_co_init (sym_co *co, void *stack, size_t size, void (*fn) (void *),
 void
 sym_co_resume (sym_co *co)
 {
+  for (;;)
+    {
 #if CO_ASAN
-  void *fake = NULL;
-  __sanitizer_start_switch_fiber (&fake, co->stack, co->size);
+      void *fake = NULL;
+      __sanitizer_start_switch_fiber (&fake, co->stack, co->size);
 #endif
-  co_starting = co;
+      co_starting = co;
+      co_current = co;
 #if defined (__x86_64__)
-  sym_co_swap (&co->caller_sp, co->sp);
+      sym_co_swap (&co->caller_sp, co->sp);
 #else
-  swapcontext (&co->caller, &co->self);
+      swapcontext (&co->caller, &co->self);
 #endif
+      co_current = NULL;
 #if CO_ASAN
-  __sanitizer_finish_switch_fiber (fake, NULL, NULL);
+      __sanitizer_finish_switch_fiber (fake, NULL, NULL);
 #endif
+      /* a call co wants made from here (sym_outside), then on with co */
+      if (! co->out_fn)
+        return;
+      void (*fn) (void *) = co->out_fn;
+      co->out_fn = NULL;
+      fn (co->out_arg);
+    }
+}
+
+void
+sym_outside (void (*fn) (void *), void *arg)
+{
+  sym_co *co = co_current;
+  if (! co)
+    {
+      fn (arg);
+      return;
+    }
+  co->out_fn = fn;
+  co->out_arg = arg;
+  sym_co_yield (co);
 }
 
 void

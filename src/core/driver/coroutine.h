@@ -18,6 +18,8 @@ typedef struct {
   void (*fn) (void *);
   void *arg;
   int finished;             /* fn has returned */
+  void (*out_fn) (void *);  /* a call to make from the caller's stack */
+  void *out_arg;
 #if defined (__x86_64__)
   void *sp, *caller_sp;
 #else
@@ -35,7 +37,8 @@ typedef struct {
 int sym_co_init (sym_co *co, void *stack, size_t size, void (*fn) (void *),
                  void *arg);
 /* run co until it yields or its fn returns (co->finished; it must not be
-   resumed again) */
+   resumed again); the calls co asks for by sym_outside (numerics.h) are
+   made on the way, from the caller's stack */
 void sym_co_resume (sym_co *co);
 /* from inside co: back to the resume that ran it */
 void sym_co_yield (sym_co *co);

@@ -7,12 +7,6 @@
 
 #include <math.h>
 
-extern void dgetrf_ (const int *m, const int *n, double *a, const int *lda,
-                     int *ipiv, int *info);
-extern void dgetrs_ (const char *trans, const int *n, const int *nrhs,
-                     const double *a, const int *lda, const int *ipiv,
-                     double *b, const int *ldb, int *info);
-
 int
 sym_lu_init (sym_lu *lu, int n)
 {
@@ -52,7 +46,7 @@ sym_lu_factor (sym_lu *lu, sym_counters *c)
         lu->factored = 0;
         return SYM_SINGULAR;
       }
-  dgetrf_ (&lu->n, &lu->n, lu->a, &lu->n, lu->ipiv, &info);
+  info = sym_getrf (0, lu->n, lu->a, lu->ipiv);
   lu->factored = (info == 0);
   return info == 0 ? SYM_SUCCESS : SYM_SINGULAR;
 }
@@ -60,11 +54,11 @@ sym_lu_factor (sym_lu *lu, sym_counters *c)
 int
 sym_lu_solve (sym_lu *lu, double *b, sym_counters *c)
 {
-  int info = 0, one = 1;
+  int info = 0;
   if (! lu->factored)
     return SYM_EBADINPUT;
   if (c)
     c->nsolve++;
-  dgetrs_ ("N", &lu->n, &one, lu->a, &lu->n, lu->ipiv, b, &lu->n, &info);
+  info = sym_getrs (0, lu->n, lu->a, lu->ipiv, b);
   return info == 0 ? SYM_SUCCESS : SYM_EBADINPUT;
 }

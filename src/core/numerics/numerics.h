@@ -19,6 +19,28 @@ int sym_same_time (double a, double b, double h);
    (SYM_SAME_STEP) */
 int sym_same_step (double h, double hprev);
 
+/* ---------------------------------------------------------------- LAPACK */
+/* fn (arg) on the stack of the core's caller: at once, unless the core
+   runs an ensemble's member on a stack of its own (driver/coroutine.c),
+   which then waits while its caller makes the call */
+void sym_outside (void (*fn) (void *), void *arg);
+
+/* The LAPACK and BLAS routines the core calls (lapack.c), through
+   sym_outside; they return LAPACK's info.  cplx: complex*16 arrays as
+   (re, im) pairs of doubles (zgetrf, zgetrs) */
+int sym_getrf (int cplx, int n, double *a, int *ipiv);
+int sym_getrs (int cplx, int n, const double *a, const int *ipiv, double *b);
+/* c = a b (m-by-k times k-by-n) */
+void sym_gemm (int m, int n, int k, const double *a, int lda,
+               const double *b, int ldb, double *c, int ldc);
+/* the eigenvalues wr + i wi and right eigenvectors vr (n-by-n) of a
+   (destroyed): dgeev */
+int sym_geev (int n, double *a, double *wr, double *wi, double *vr,
+              double *work, int lwork);
+/* the eigenvalues (into d) and eigenvectors z (n-by-n) of the symmetric
+   tridiagonal matrix of diagonal d and off-diagonal e: dstev */
+int sym_stev (int n, double *d, double *e, double *z, double *work);
+
 /* ---------------------------------------------------------------- LU */
 /* Dense LU with reuse (LAPACK dgetrf/dgetrs): factor once, solve many
    times. */

@@ -15,9 +15,6 @@
 
 #include <math.h>
 
-extern void dstev_ (const char *jobz, const int *n, double *d, double *e,
-                    double *z, const int *ldz, double *work, int *info);
-
 /* P_m(x) and P_m'(x) by the recurrence, in long double (see below).  For
    |x| < 1 the derivative comes from (1 - x^2) P_m' = m (P_{m-1} - x P_m);
    the nodes are inside, and (1 - x)(1 + x) keeps its digits near +-1. */
@@ -61,8 +58,7 @@ sym_gauss_legendre (int m, double *z, double *w)
     z[i] = 0.0;
   for (int k = 1; k < m; k++)
     e[k - 1] = k / sqrt (4.0 * k * k - 1.0);
-  int info = 0;
-  dstev_ ("V", &m, z, e, v, &m, work, &info);
+  int info = sym_stev (m, z, e, v, work);
   if (info == 0)
     for (int j = 0; j < m; j++)
       w[j] = 2.0 * v[(size_t) j * m] * v[(size_t) j * m];

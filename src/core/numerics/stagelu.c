@@ -27,18 +27,6 @@
 
 #include <suitesparse/klu.h>
 
-extern void dgetrf_ (const int *m, const int *n, double *a, const int *lda,
-                     int *ipiv, int *info);
-extern void dgetrs_ (const char *trans, const int *n, const int *nrhs,
-                     const double *a, const int *lda, const int *ipiv,
-                     double *b, const int *ldb, int *info);
-/* complex*16 arrays as (re, im) pairs of doubles */
-extern void zgetrf_ (const int *m, const int *n, double *a, const int *lda,
-                     int *ipiv, int *info);
-extern void zgetrs_ (const char *trans, const int *n, const int *nrhs,
-                     const double *a, const int *lda, const int *ipiv,
-                     double *b, const int *ldb, int *info);
-
 /* ------------------------------------------------------------ KLU's memory */
 /* SuiteSparse_config (-lsuitesparseconfig) holds the hooks up to
    SuiteSparse 6; where the struct is no longer public (SuiteSparse 7)
@@ -465,10 +453,7 @@ dense_factor (sym_stage_lu *s, double gr, double gi, const double *J,
   /* no factors of a non-finite matrix: as for a singular one */
   if (! dense_fill (s, gr, gi, J, ld))
     return SYM_SINGULAR;
-  if (s->cplx)
-    zgetrf_ (&s->n, &s->n, s->a, &s->n, s->ipiv, &info);
-  else
-    dgetrf_ (&s->n, &s->n, s->a, &s->n, s->ipiv, &info);
+  info = sym_getrf (s->cplx, s->n, s->a, s->ipiv);
   if (info > 0)
     return SYM_SINGULAR;
   return info == 0 ? SYM_SUCCESS : SYM_EBADINPUT;
@@ -477,11 +462,7 @@ dense_factor (sym_stage_lu *s, double gr, double gi, const double *J,
 static int
 dense_solve (sym_stage_lu *s, double *b)
 {
-  int info = 0, one = 1;
-  if (s->cplx)
-    zgetrs_ ("N", &s->n, &one, s->a, &s->n, s->ipiv, b, &s->n, &info);
-  else
-    dgetrs_ ("N", &s->n, &one, s->a, &s->n, s->ipiv, b, &s->n, &info);
+  int info = sym_getrs (s->cplx, s->n, s->a, s->ipiv, b);
   return info == 0 ? SYM_SUCCESS : SYM_EBADINPUT;
 }
 

@@ -71,16 +71,6 @@ struct spvi_stages {
   double *wv;                   /* work: 2d */
 };
 
-extern void dgemm_ (const char *ta, const char *tb, const int *m,
-                    const int *n, const int *k, const double *alpha,
-                    const double *a, const int *lda, const double *b,
-                    const int *ldb, const double *beta, double *c,
-                    const int *ldc);
-extern void dgeev_ (const char *jobvl, const char *jobvr, const int *n,
-                    double *a, const int *lda, double *wr, double *wi,
-                    double *vl, const int *ldvl, double *vr, const int *ldvr,
-                    double *work, const int *lwork, int *info);
-
 /* Invert the m-by-m complex a (column-major) into ai by Gauss-Jordan
    with partial pivoting; -1 if singular */
 static int
@@ -174,9 +164,7 @@ transforms (spvi_core *c, spvi_stages *g)
       }
   if (! (diff <= SYM_SPVI_STAGE_SAME * smax))
     goto done;
-  int info = 0, lwork = 4 * m + (int) mm, one = 1;
-  dgeev_ ("N", "V", &m, S, &m, wr, wi, NULL, &one, vr, &m, work, &lwork,
-          &info);
+  int info = sym_geev (m, S, wr, wi, vr, work, 4 * m + (int) mm);
   if (info)
     goto done;
   for (int j = 0; j < m; j++)
@@ -440,10 +428,8 @@ schur_setup (spvi_stages *g, int d)
         memcpy (g->K + j * dd, g->J + dd + j * nn, dd * sizeof (double));
       return 1;
     }
-  const double one = 1.0, zero = 0.0;
   const int ld = (int) nn;
-  dgemm_ ("N", "N", &d, &d, &d, &one, g->J + d, &ld, g->J + nn * d, &ld,
-          &zero, g->K, &d);
+  sym_gemm (d, d, d, g->J + d, ld, g->J + nn * d, ld, g->K, d);
   return 1;
 }
 
