@@ -499,8 +499,9 @@ typedef struct {
   sym_stats *stats;               /* members of them, or NULL */
   int *status;                    /* members of them: sym_integrate's */
   /* optional: after each round, from the caller's stack: 0 to go on, 1
-     to stop every member at its next row (its output then returns 1),
-     < 0 for an error (the same, returning that) */
+     to stop every member at its next row (its output then returns 1; a
+     member without an output sink runs on), < 0 for an error (the same,
+     returning that) */
   int (*round) (void *user);
   void *round_user;
   size_t stack_bytes;             /* a member's stack; 0: SYM_ENS_STACK */

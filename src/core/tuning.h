@@ -211,6 +211,10 @@
    stepper, LAPACK, the driver) is far below this; only the pages
    touched become resident */
 #define SYM_ENS_STACK ((size_t) 256 << 10)
+/* and up to this much more, by which the members' stack tops are
+   staggered: blocks of one size start at the same offset of a page, and
+   tops that lie a multiple of a page apart share their cache sets */
+#define SYM_ENS_SKEW ((size_t) 60 * 320)
 /* the members of an ensemble that run at once (without an OutputFcn,
    which needs them all): enough for batches where a call of FCN costs
    little per state, few enough that their steppers and stacks (some

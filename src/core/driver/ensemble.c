@@ -428,9 +428,11 @@ sym_ensemble (const sym_stepper_type *type, const sym_system *sys,
   int *stack_of = sym_malloc ((size_t) K * sizeof (int));
   int st = e.m && stacks && free_stack && stack_of ? SYM_SUCCESS
            : SYM_ENOMEM;
+  /* the stacks' tops staggered, each block SYM_ENS_SKEW larger */
+  const size_t skew_max = SYM_ENS_SKEW;
   for (int i = 0; i < ns && ! st; i++)
     {
-      stacks[i] = sym_malloc (ss);
+      stacks[i] = sym_malloc (ss + skew_max);
       free_stack[i] = ns - 1 - i;
       if (! stacks[i])
         st = SYM_ENOMEM;
@@ -444,14 +446,11 @@ sym_ensemble (const sym_stepper_type *type, const sym_system *sys,
       for (; next < K && nfree > 0; next++, live++)
         {
           const int j = free_stack[--nfree];
-          /* the stacks' tops staggered: blocks of one size start at the
-             same offset of a page, and tops that far apart share their
-             cache sets */
           const size_t skew = (size_t) (next % 61) * 320;
           member_setup (&e, &e.m[next], next);
           stack_of[next] = j;
-          if (sym_co_init (&e.m[next].co, stacks[j], ss - skew, member_run,
-                           &e.m[next]))
+          if (sym_co_init (&e.m[next].co, stacks[j], ss + skew_max - skew,
+                           member_run, &e.m[next]))
             {
               /* no context for it: it ends before its start */
               o->status[next] = SYM_ENOMEM;
