@@ -19,8 +19,9 @@
 #                       pkg test and demo odeSPVI (tests/check_installed.sh)
 #   make bench          deps and all, then bench/run_benchmarks.m (RESULTS.md),
 #                       bench/run_methods.m (METHODS.md, methods-*.png),
-#                       bench/run_reversible.m (REVERSIBLE.md, its PNG) and
-#                       bench/run_large.m (LARGE.md)
+#                       bench/run_reversible.m (REVERSIBLE.md, its PNG),
+#                       bench/run_large.m (LARGE.md) and
+#                       bench/run_ensemble.m (ENSEMBLE.md)
 #   make clean
 #
 # src/Makefile builds the compiled gateways __odeSE__.mex etc. in src/;
@@ -114,6 +115,7 @@ bench: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_methods.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_reversible.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_large.m
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_ensemble.m
 
 # Stage a clean copy (no build products) and pack it as DISTNAME/.  In a
 # git checkout only the files git tracks are packed (as they are in the
