@@ -61,15 +61,7 @@ function r = worker (top, args)
 endfunction
 
 function s = met (ok)
-  s = ifelse_str (ok, "met", "NOT met");
-endfunction
-
-function s = ifelse_str (c, a, b)
-  if (c)
-    s = a;
-  else
-    s = b;
-  endif
+  s = merge (ok, "met", "NOT met");
 endfunction
 
 top = fileparts (fileparts (mfilename ("fullpath")));
@@ -172,29 +164,29 @@ s = A.odeSV;
 fprintf (f, "| A | odeSV, Separable, K = 1000, Vectorized: the same | %.2f us / %.3f us = %.0f | >= 100 | %s |\n", ...
          1e6 * s.single, 1e6 * s.member, s.single / s.member, met (s.single / s.member >= 100));
 fprintf (f, "| A | members against their own runs (members 1, 300, 1000) | %s | isequal | %s |\n", ...
-         ifelse_str (A.odeSPVI.same && A.odeSV.same, "equal", "DIFFER"), ...
+         merge (A.odeSPVI.same && A.odeSV.same, "equal", "DIFFER"), ...
          met (A.odeSPVI.same && A.odeSV.same));
 fprintf (f, "| B | 16 members, Vectorized off, odeSPVI (4, 3): serial / Parallel = 2 | %.2f s / %.2f s = %.2f | >= 1.7 | %s |\n", ...
          B.serial, B.parallel, B.serial / B.parallel, met (B.serial / B.parallel >= 1.7));
 fprintf (f, "| B | Parallel = 2 against serial | %s | isequal | %s |\n", ...
-         ifelse_str (B.same, "equal", "DIFFER"), met (B.same));
+         merge (B.same, "equal", "DIFFER"), met (B.same));
 for i = 1:numel (C)
   r = C{i};
   fprintf (f, "| C | 1e4 pendulums, 1e3 steps, %s%s: peak / output | %.1f MB / %.1f MB = %.2f | <= 1.5 | %s |\n", ...
-           r.name, ifelse_str (strcmp (r.separable, "on"), " Separable", ""), ...
+           r.name, merge (strcmp (r.separable, "on"), " Separable", ""), ...
            r.peak / 2^20, r.out / 2^20, r.peak / r.out, met (r.peak / r.out <= 1.5));
 endfor
 fprintf (f, "\n## What is measured\n\n");
 fprintf (f, "A. Kepler's problem, y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))] for K = 1000 eccentricities e from 0.05 to 0.6 (all of period 2 pi), fixed step h = 2 pi/100, `Vectorized` on, FCN bench/kepler_cols.m (a column alone and among others alike).  The single run (member 300, e = %.3f) takes %d steps (odeSPVI) or %d (odeSV), the ensemble %d or %d steps of every member; each time is the least of 3 calls of `[t, y] = solver (...)`; a member-step is the ensemble's time / (K x steps).  For scale, the single run with `Vectorized` off: odeSPVI %.2f us/step, odeSV %.2f us/step.\n\n", ...
          e(300), cases{1,4}, cases{2,4}, cases{1,5}, cases{2,5}, 1e6 * A.odeSPVI.plain, 1e6 * A.odeSV.plain);
 fprintf (f, "B. Members 1 to 16 of A, `Vectorized` off (FCN called for each state), %d steps, odeSPVI (4, 3); the least of 5 calls each; Parallel = 2 splits the members between two processes of the package `parallel`.%s\n\n", ...
-         nB, ifelse_str (isempty (B.note), "", [" Parallel failed: " B.note]));
+         nB, merge (isempty (B.note), "", [" Parallel failed: " B.note]));
 fprintf (f, "C. K = 1e4 pendulums H = p^2/2 - cos q, q0 from 0.1 to 2.5, p0 = 0, fixed step 0.01, 1e3 steps, `Vectorized` on, `[t, Y] = solver (@pendulum_cols, [0 10], Y0, opts)`: the output is t and Y, 1001 x 2 x 1e4 doubles.  Each run is its own octave-cli process (bench/ensemble_worker.m): a warm-up call, then VmHWM is reset to VmRSS, the call is made, and the peak is VmHWM after less VmRSS before: everything the call touched at its highest, the output included.  odeSV with Separable takes explicit steps: the members go as one stacked system; the other two run in rounds, at most 1024 members at once.\n\n");
 fprintf (f, "| run | time | us per member-step | largest energy error |\n|---|---|---|---|\n");
 for i = 1:numel (C)
   r = C{i};
   fprintf (f, "| %s%s | %.1f s | %.2f | %.1e |\n", r.name, ...
-           ifelse_str (strcmp (r.separable, "on"), " Separable", ""), ...
+           merge (strcmp (r.separable, "on"), " Separable", ""), ...
            r.time, 1e6 * r.time / (r.K * r.steps), r.dE);
 endfor
 fprintf (f, "\nTimes are from a machine that may have been busy.\n");

@@ -252,14 +252,6 @@ function [out, text, err, lw] = run_once (gateway, nout, args)
   lw = {lmsg, lid};
 endfunction
 
-function v = ifelse_val (c, a, b)
-  if (c)
-    v = a;
-  else
-    v = b;
-  endif
-endfunction
-
 ## The chunks on the servers: each gets its job (after the command that
 ## runs it), then the results come back in order while the others run.
 function res = run_remote (name, conns, idx, info, jobs)

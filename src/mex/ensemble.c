@@ -326,15 +326,7 @@ rows_outputs (ens_out *E, int nlhs, mxArray *plhs[])
           mxSetN (ie, 0);
         }
     }
-  plhs[2] = te;
-  if (nlhs > 3)
-    plhs[3] = ye;
-  else
-    mxDestroyArray (ye);
-  if (nlhs > 4)
-    plhs[4] = ie;
-  else
-    mxDestroyArray (ie);
+  symmex_event_plhs (nlhs, plhs, te, ye, ie);
 }
 
 /* sol: 1 x K, sol(k) as member k's own run returns it */

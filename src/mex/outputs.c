@@ -434,14 +434,21 @@ symmex_outputs (const symmex_method *m, const void *own,
     {
       mxArray *te, *ye, *ie;
       event_outputs (c, n, &te, &ye, &ie);
-      plhs[2] = te;
-      if (nlhs > 3)
-        plhs[3] = ye;
-      else
-        mxDestroyArray (ye);
-      if (nlhs > 4)
-        plhs[4] = ie;
-      else
-        mxDestroyArray (ie);
+      symmex_event_plhs (nlhs, plhs, te, ye, ie);
     }
+}
+
+void
+symmex_event_plhs (int nlhs, mxArray *plhs[], mxArray *te, mxArray *ye,
+                   mxArray *ie)
+{
+  plhs[2] = te;
+  if (nlhs > 3)
+    plhs[3] = ye;
+  else
+    mxDestroyArray (ye);
+  if (nlhs > 4)
+    plhs[4] = ie;
+  else
+    mxDestroyArray (ie);
 }

@@ -274,6 +274,9 @@ void symmex_energy (symmex_ctx *c);
 /* OutputFcn (t, y(OutputSel), flag, extras...): its stop flag */
 int symmex_outputfcn (symmex_ctx *c, const double *t, int nt,
                       const double *y, const char *flag);
+/* te, ye, ie into plhs[2..] as far as nlhs asks (the others destroyed) */
+void symmex_event_plhs (int nlhs, mxArray *plhs[], mxArray *te,
+                        mxArray *ye, mxArray *ie);
 /* [t, y, te, ye, ie] or sol into plhs (the rows' blocks freed as they
    are copied: the last use of the rows) */
 void symmex_outputs (const symmex_method *m, const void *own,
