@@ -348,6 +348,19 @@
 %! clear -global ens_out
 
 %!test
+%! ## OutputFcn with terminal events: its times are those of t, the rows
+%! ## of the events themselves (off the grid) go to ye alone
+%! global ens_out
+%! ens_out = {};
+%! o = symplecticset ("TimeStepSize", 0.05, "Ensemble", "on", ...
+%!                    "Events", @cross_q1, "OutputFcn", @record_out);
+%! [t, Y, te] = odeSV (@kep, [0 3], kep_y0 ([0.1 0.5]), o);
+%! ts = cellfun (@(c) c{1}, ens_out(2:end-1));
+%! assert (ts(:), t(2:end));
+%! assert (numel (te), 2);
+%! clear -global ens_out
+
+%!test
 %! ## OutputFcn's stop ends every member there, with one warning
 %! o = symplecticset ("TimeStepSize", 0.25, "Ensemble", "on", ...
 %!                    "OutputFcn", @stop_at_one);

@@ -181,8 +181,8 @@ grid_t (const ens_out *E, size_t r)
 }
 
 /* Member k's state at row r (time t) into y, or NaN when it has none
-   (it ended before, or its row r is a terminal event's) */
-static void
+   (it ended before, or its row r is a terminal event's): whether it has */
+static int
 member_row (const ens_out *E, int k, size_t r, double t, double *y)
 {
   const int n = E->n;
@@ -192,15 +192,16 @@ member_row (const ens_out *E, int k, size_t r, double t, double *y)
     {
       for (int i = 0; i < n; i++)
         y[i] = row_value (E, k, r, i);
-      return;
+      return 1;
     }
   if (! E->rows_form && r < E->mc[k]->nrows && E->mc[k]->tbuf[r] == t)
     {
       memcpy (y, symmex_row (E->mc[k], r), sizeof (double) * n);
-      return;
+      return 1;
     }
   for (int i = 0; i < n; i++)
     y[i] = NAN;
+  return 0;
 }
 
 /* After each round: OutputFcn at the rows every running member has
@@ -227,10 +228,12 @@ ens_round (void *user)
   for (size_t r = E->emitted; r < done_rows; r++)
     {
       double t = grid_t (E, r);
+      int any = 0;
       for (int k = 0; k < E->K; k++)
-        member_row (E, k, r, t, E->orow + (size_t) k * E->n);
+        any |= member_row (E, k, r, t, E->orow + (size_t) k * E->n);
       E->emitted = r + 1;
-      if (symmex_outputfcn (E->c, &t, 1, E->orow, ""))
+      /* a row only of terminal events' (off the grid) is not Y's */
+      if (any && symmex_outputfcn (E->c, &t, 1, E->orow, ""))
         {
           E->stop_row = (long) r;
           return 1;
