@@ -81,7 +81,7 @@
 ## times in @var{tspan} then, or ask for @var{sol}.  With
 ## @code{Vectorized} @qcode{"on"}, one call of @var{fcn} evaluates the
 ## states of all members at once (a lone state comes as two equal
-## columns), so that K members cost little more than one; members are
+## columns), so that the members share the cost of a call; members are
 ## to the bit as their own runs when @var{fcn} computes a column alike in
 ## any batch.  Without it @var{fcn} is called for each state.  Newton's
 ## method works member by member; a member that fails stops alone, with
