@@ -163,6 +163,24 @@
 %! [t, Y] = odeSV (@(t, y) here_only ([y(2,:); -y(1,:)]), [0 1], Y0,
 %!                 symplecticset (o, "Parallel", 2));
 
+%!test
+%! ## the table that gives the workers' warnings their identifiers knows
+%! ## every warning of the gateways (src/mex)
+%! src = fullfile (fileparts (which ("__odeSV__")), "mex");
+%! ids = {};
+%! for cf = dir (fullfile (src, "*.c"))'
+%!   tok = regexp (fileread (fullfile (src, cf.name)),
+%!                 'mexWarnMsgIdAndTxt \("(symplectic:[a-z-]+)"', "tokens");
+%!   ids = [ids, cellfun(@(c) c{1}, tok, "UniformOutput", false)];
+%! endfor
+%! ids = unique (ids);
+%! assert (numel (ids) >= 10);
+%! table = fileread (fullfile (fileparts (which ("odeSV")), "private",
+%!                             "__ensemble_parallel__.m"));
+%! for i = 1:numel (ids)
+%!   assert (! isempty (strfind (table, ["\"" ids{i} "\""])), ids{i});
+%! endfor
+
 ## ------------------------------------------------------------ bad use
 %!error <odeSV: Parallel needs Ensemble on>
 %! [t, y] = odeSV (f, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "Parallel", 2));
