@@ -62,6 +62,25 @@ struct ens_out {
 };
 
 /* ------------------------------------------------------------ sinks */
+/* No rows yet: at the start, and again when the stacked run failed and
+   the members start over in rounds */
+static void
+rows_clear (ens_out *E)
+{
+  for (int k = 0; k < E->K; k++)
+    {
+      E->nrows[k] = 0;
+      E->tlast[k] = NAN;
+      if (E->flushed)
+        E->flushed[k] = 0;
+    }
+  for (size_t r = 0; r < E->R; r++)
+    {
+      E->tg[r] = NAN;
+      E->weak[r] = 0;
+    }
+}
+
 /* Member k's context: the shared callbacks' arrays, rows and events of
    its own, no OutputFcn (the ensemble's is called here).  Made on first
    use, possibly on the member's stack (an allocation there must not
@@ -608,7 +627,7 @@ symmex_ensemble (const symmex_method *m, const void *own,
   E.first = first;
   E.rows_form = nlhs >= 2;
   E.stop_row = -1;
-  E.nrows = mxCalloc (K, sizeof (size_t));
+  E.nrows = mxMalloc (K * sizeof (size_t));
   E.tlast = mxMalloc (K * sizeof (double));
   E.tev = mxMalloc (K * sizeof (double));
   E.mc = mxCalloc (K, sizeof (symmex_ctx *));
@@ -630,15 +649,14 @@ symmex_ensemble (const symmex_method *m, const void *own,
       E.Ya = out[0];
       E.Y = mxGetPr (E.Ya);
       E.tg = mxMalloc ((E.R ? E.R : 1) * sizeof (double));
-      E.weak = mxCalloc (E.R ? E.R : 1, 1);
-      for (size_t r = 0; r < E.R; r++)
-        E.tg[r] = NAN;
+      E.weak = mxMalloc (E.R ? E.R : 1);
       const size_t per = (size_t) n * K * sizeof (double);
       E.B = ((size_t) 4 << 20) / per;
       E.B = E.B < 1 ? 1 : E.B > 64 ? 64 : E.B;
       E.stage = mxMalloc (per * E.B);
-      E.flushed = mxCalloc (K, sizeof (size_t));
+      E.flushed = mxMalloc (K * sizeof (size_t));
     }
+  rows_clear (&E);
   symmex_opts *om = mxMalloc (sizeof *om);
   *om = *o;
   om->outputfcn = NULL;
@@ -654,7 +672,6 @@ symmex_ensemble (const symmex_method *m, const void *own,
                            name);
       E.ref[k].E = &E;
       E.ref[k].k = k;
-      E.tlast[k] = NAN;
       E.tev[k] = NAN;
       E.status[k] = RUNNING;
       dk[k] = *dopt;
@@ -680,17 +697,7 @@ symmex_ensemble (const symmex_method *m, const void *own,
     for (int k = 0; k < K; k++)
       E.status[k] = SYM_DONE;
   else if (stacked)
-    for (int k = 0; k < K; k++)
-      {
-        E.nrows[k] = E.flushed[k] = 0;
-        E.tlast[k] = NAN;
-      }
-  if (stacked && sstatus != SYM_DONE)
-    for (size_t r = 0; r < E.R; r++)
-      {
-        E.tg[r] = NAN;
-        E.weak[r] = 0;
-      }
+    rows_clear (&E);
   sym_ensemble_opts eo;
   memset (&eo, 0, sizeof eo);
   eo.members = K;
