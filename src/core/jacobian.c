@@ -89,8 +89,12 @@ jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
   if (fout)
     f0 = fout;
   const size_t kn = (size_t) k * n;
-  double *w = sym_malloc ((2 * (ncw + nb) * n + 2 * kn + cols + nb + n)
-                          * sizeof (double));
+  const size_t need = 2 * (ncw + nb) * n + 2 * kn + cols + nb + n;
+  /* a small system's workspace on the stack: an allocation costs more
+     than its differences (a block of the MEX allocator most of all) */
+  double local[SYM_FD_LOCAL];
+  double *w = need <= SYM_FD_LOCAL ? local
+                                   : sym_malloc (need * sizeof (double));
   if (! w)
     return SYM_ENOMEM;
   double *yp = w, *fp = w + (ncw + nb) * n, *del = w + 2 * (ncw + nb) * n;
@@ -172,7 +176,8 @@ jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
         }
     }
   ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
-  sym_free (w);
+  if (w != local)
+    sym_free (w);
   return st;
 }
 

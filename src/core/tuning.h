@@ -81,6 +81,9 @@
    in its half of y, so that a component passing through zero keeps a
    useful step */
 #define SYM_FD_FLOOR 1e-6
+/* a finite-difference workspace of at most this many doubles is taken
+   on the stack (4 KB; a member of an ensemble has SYM_ENS_STACK) */
+#define SYM_FD_LOCAL 512
 /* values of y in one batch call of finite differences */
 #define SYM_FD_BATCH_DOUBLES ((size_t) 1 << 19)
 

@@ -18,6 +18,12 @@ count_alloc (size_t n)
   nalloc++;
   return malloc (n);
 }
+static void *
+no_alloc (size_t n)
+{
+  (void) n;
+  return NULL;
+}
 static void
 count_free (void *p)
 {
@@ -443,6 +449,11 @@ scenario_fd_batch_in_parts (void)
         err = fmax (err, fabs (j1[n * n + c * n + r] - ex));
       }
   CHECK (err < 1e-6, "chain Jacobian error %.3g", err);
+  /* too large for the stack's workspace: without memory, SYM_ENOMEM */
+  sym_set_allocator (no_alloc, count_free);
+  CHECK (sym_jac_many (&cb, (int) k, tc, yc, fc, j2) == SYM_ENOMEM,
+         "chain: finite differences without memory");
+  sym_set_allocator (count_alloc, count_free);
   free (yc);
   free (fc);
   free (j1);

@@ -249,17 +249,20 @@ scenario_alloc_failure (void)
           if (S)
             stepper (sv)->free (S);
         }
-      /* a step whose finite-difference Jacobian cannot get memory */
+      /* a step of a small system allocates nothing: its finite
+         differences work on the stack (a large system's failing
+         workspace is test_core's) */
       alloc_count = 0;
       alloc_fail_at = 0;
       S = tp_alloc (stepper (sv), ev.dim, &o, 1, &st);
+      const long before = alloc_count;
       alloc_fail_at = alloc_count + 1;
       double y[4] = { 0.3, -0.4, 0.5, 0.2 }, yn[4], ye[4];
       st = stepper (sv)->step (S, &ev, 0, 0.05, 0.05, y, yn, ye);
-      CHECK (st == SYM_ENOMEM, "step without memory: %d", st);
+      CHECK (st == 0 && alloc_count == before && ev.st.cnt.nfd > 0,
+             "step without memory: %d, %ld allocations", st,
+             alloc_count - before);
       alloc_fail_at = 0;
-      st = stepper (sv)->step (S, &ev, 0, 0.05, 0.05, y, yn, ye);
-      CHECK (st == 0, "step after memory came back: %d", st);
       stepper (sv)->free (S);
       sym_set_allocator (NULL, NULL);
       printf ("allocation failures %s: each of the %ld allocations of alloc "
