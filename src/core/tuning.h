@@ -74,6 +74,9 @@
    stops at its start */
 #define SYM_JAC_GROSS 100.0
 #define SYM_JAC_NOISE 1e3
+/* dense LUs of at most this many unknowns are factored and solved by
+   the core's own loops, not LAPACK (numerics/lu.c) */
+#define SYM_LU_SMALL 32
 /* Separable steps: f_p (SE) or f_q (SV) differing by more than this
    relative size at two evaluations that must agree: not separable */
 #define SYM_SEP_TOL 1e-8

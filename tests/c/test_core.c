@@ -6,6 +6,7 @@
    the simplified Newton iteration (convergence, reuse, failure). */
 #include "sym.h"
 #include "numerics/numerics.h"
+#include "tuning.h"
 #include "testutil.h"
 
 #include <float.h>
@@ -498,6 +499,106 @@ scenario_lu (void)
   sym_lu_free (&lu);
 }
 
+extern void dgetrf_ (const int *m, const int *n, double *a, const int *lda,
+                     int *ipiv, int *info);
+
+/* LU of every size from 1 to SYM_LU_SMALL + 8 (the core's own loops and
+   LAPACK's): random matrices solve to a small backward error; up to
+   SYM_LU_SMALL the pivots are LAPACK's dgetrf's and the factors agree
+   with its to round-off; a zero pivot at any column is singular */
+static void
+scenario_lu_sizes (void)
+{
+  unsigned long seed = 12345;
+  for (int n = 1; n <= SYM_LU_SMALL + 8; n++)
+    {
+      sym_lu lu;
+      CHECK (sym_lu_init (&lu, n) == 0, "lu init %d", n);
+      const size_t nn = (size_t) n * n;
+      double *A = malloc (nn * sizeof (double));
+      double *F = malloc (nn * sizeof (double));
+      double *b = malloc ((size_t) n * sizeof (double));
+      double *x = malloc ((size_t) n * sizeof (double));
+      int *ip = malloc ((size_t) n * sizeof (int));
+      for (size_t i = 0; i < nn; i++)
+        {
+          seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+          A[i] = (double) (seed >> 11) / 9007199254740992.0 - 0.5;
+        }
+      double anorm = 0.0, bnorm = 0.0;
+      for (int i = 0; i < n; i++)
+        {
+          double r = 0.0;
+          for (int j = 0; j < n; j++)
+            r += fabs (A[i + (size_t) j * n]);
+          anorm = fmax (anorm, r);
+          b[i] = x[i] = cos (i + 1.0);
+          bnorm = fmax (bnorm, fabs (b[i]));
+        }
+      memcpy (lu.a, A, nn * sizeof (double));
+      CHECK (sym_lu_factor (&lu, NULL) == 0, "factor %d", n);
+      CHECK (sym_lu_solve (&lu, x, NULL) == 0, "solve %d", n);
+      double res = 0.0, xnorm = 0.0;
+      for (int i = 0; i < n; i++)
+        {
+          double r = -b[i];
+          for (int j = 0; j < n; j++)
+            r += A[i + (size_t) j * n] * x[j];
+          res = fmax (res, fabs (r));
+          xnorm = fmax (xnorm, fabs (x[i]));
+        }
+      CHECK (res <= 4.0 * n * DBL_EPSILON * (anorm * xnorm + bnorm),
+             "n %d: backward error %.3g", n,
+             res / (anorm * xnorm + bnorm));
+      if (n <= SYM_LU_SMALL)
+        {
+          int info = 0;
+          memcpy (F, A, nn * sizeof (double));
+          dgetrf_ (&n, &n, F, &n, ip, &info);
+          int same = info == 0;
+          double dif = 0.0;
+          for (int i = 0; i < n; i++)
+            same = same && ip[i] == lu.ipiv[i];
+          for (size_t i = 0; i < nn; i++)
+            dif = fmax (dif, fabs (F[i] - lu.a[i]));
+          CHECK (same, "n %d: the pivots of dgetrf", n);
+          CHECK (dif <= 1e3 * DBL_EPSILON * anorm, "n %d: factors differ "
+                 "from dgetrf's by %.3g", n, dif);
+        }
+      /* column c zero: an exactly zero pivot at c */
+      const int c = n / 2;
+      if (n > 1)
+        {
+          memcpy (lu.a, A, nn * sizeof (double));
+          for (int i = 0; i < n; i++)
+            lu.a[i + (size_t) c * n] = 0.0;
+          CHECK (sym_lu_factor (&lu, NULL) == SYM_SINGULAR && ! lu.factored,
+                 "n %d: singular at column %d", n, c);
+        }
+      free (A);
+      free (F);
+      free (b);
+      free (x);
+      free (ip);
+      sym_lu_free (&lu);
+    }
+  /* a pivot row found below: a permutation matrix, and equal sizes
+     (the first of them pivots, as in LAPACK) */
+  sym_lu lu;
+  CHECK (sym_lu_init (&lu, 3) == 0, "lu init");
+  const double P[9] = { 0, 0, 1, 1, 0, 0, 0, 1, 0 };
+  double b[3] = { 1, 2, 3 };
+  memcpy (lu.a, P, sizeof P);
+  CHECK (sym_lu_factor (&lu, NULL) == 0 && sym_lu_solve (&lu, b, NULL) == 0
+         && b[0] == 3 && b[1] == 1 && b[2] == 2, "permutation: %g %g %g",
+         b[0], b[1], b[2]);
+  const double T[9] = { 1, -1, 1, 2, 1, 0, 0, 3, 1 };
+  memcpy (lu.a, T, sizeof T);
+  CHECK (sym_lu_factor (&lu, NULL) == 0 && lu.ipiv[0] == 1, "ties: pivot %d",
+         lu.ipiv[0]);
+  sym_lu_free (&lu);
+}
+
 /* Newton: converges to machine precision; the LU is reused by the next
    solve from a nearby start */
 static void
@@ -661,6 +762,7 @@ main (void)
   scenario_fd_batch_in_parts ();
   scenario_analytic_jac ();
   scenario_lu ();
+  scenario_lu_sizes ();
   scenario_newton ();
   scenario_jac_probe ();
   scenario_domain_edge ();

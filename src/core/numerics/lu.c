@@ -1,11 +1,90 @@
 /* Copyright (C) 2026 The symplectic developers
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
-/* lu.c -- dense LU by LAPACK (dgetrf/dgetrs), factored once and solved
-   many times. */
+/* lu.c -- dense LU, factored once and solved many times: by LAPACK
+   (dgetrf/dgetrs), or for n <= SYM_LU_SMALL by the loops below, where a
+   BLAS spends more on its calls than on the arithmetic.  The small
+   path's results are the same whatever BLAS Octave links. */
 #include "numerics.h"
+#include "tuning.h"
 
 #include <math.h>
+
+/* Partial pivoting, row by row as dgetf2: the first row of largest
+   |a(i,k)| pivots column k.  ipiv is 1-based as LAPACK's.  Returns 0, or
+   k + 1 for the first exactly zero pivot (the rest is not factored). */
+static int
+small_getrf (int n, double *a, int *ipiv)
+{
+  for (int k = 0; k < n; k++)
+    {
+      double *ck = a + (size_t) k * n;
+      int p = k;
+      double amax = fabs (ck[k]);
+      for (int i = k + 1; i < n; i++)
+        if (fabs (ck[i]) > amax)
+          {
+            amax = fabs (ck[i]);
+            p = i;
+          }
+      ipiv[k] = p + 1;
+      if (ck[p] == 0.0)
+        return k + 1;
+      if (p != k)
+        for (int j = 0; j < n; j++)
+          {
+            double *cj = a + (size_t) j * n;
+            const double t = cj[k];
+            cj[k] = cj[p];
+            cj[p] = t;
+          }
+      const double r = 1.0 / ck[k];
+      for (int i = k + 1; i < n; i++)
+        ck[i] *= r;
+      for (int j = k + 1; j < n; j++)
+        {
+          double *cj = a + (size_t) j * n;
+          const double akj = cj[k];
+          if (akj != 0.0)
+            for (int i = k + 1; i < n; i++)
+              cj[i] -= ck[i] * akj;
+        }
+    }
+  return 0;
+}
+
+/* b <- A \ b from small_getrf's factors: the row swaps, L y = b (unit
+   diagonal), U x = y, each column of the factors taken at once */
+static void
+small_getrs (int n, const double *a, const int *ipiv, double *b)
+{
+  for (int k = 0; k < n; k++)
+    {
+      const int p = ipiv[k] - 1;
+      if (p != k)
+        {
+          const double t = b[k];
+          b[k] = b[p];
+          b[p] = t;
+        }
+    }
+  for (int k = 0; k < n; k++)
+    {
+      const double *ck = a + (size_t) k * n;
+      const double bk = b[k];
+      if (bk != 0.0)
+        for (int i = k + 1; i < n; i++)
+          b[i] -= ck[i] * bk;
+    }
+  for (int k = n - 1; k >= 0; k--)
+    {
+      const double *ck = a + (size_t) k * n;
+      const double bk = b[k] /= ck[k];
+      if (bk != 0.0)
+        for (int i = 0; i < k; i++)
+          b[i] -= ck[i] * bk;
+    }
+}
 
 int
 sym_lu_init (sym_lu *lu, int n)
@@ -46,7 +125,8 @@ sym_lu_factor (sym_lu *lu, sym_counters *c)
         lu->factored = 0;
         return SYM_SINGULAR;
       }
-  info = sym_getrf (0, lu->n, lu->a, lu->ipiv);
+  info = lu->n <= SYM_LU_SMALL ? small_getrf (lu->n, lu->a, lu->ipiv)
+                               : sym_getrf (0, lu->n, lu->a, lu->ipiv);
   lu->factored = (info == 0);
   return info == 0 ? SYM_SUCCESS : SYM_SINGULAR;
 }
@@ -59,6 +139,9 @@ sym_lu_solve (sym_lu *lu, double *b, sym_counters *c)
     return SYM_EBADINPUT;
   if (c)
     c->nsolve++;
-  info = sym_getrs (0, lu->n, lu->a, lu->ipiv, b);
+  if (lu->n <= SYM_LU_SMALL)
+    small_getrs (lu->n, lu->a, lu->ipiv, b);
+  else
+    info = sym_getrs (0, lu->n, lu->a, lu->ipiv, b);
   return info == 0 ? SYM_SUCCESS : SYM_EBADINPUT;
 }
