@@ -41,56 +41,61 @@ keep (spvi_core *c)
   c->he[0] = c->h;
 }
 
-/* The Newton matrix from the node Jacobians in c->A and the step c->h. */
+/* The Newton matrix from the node Jacobians in c->A and the step c->h.
+   Its columns are written in order, each from its own loops (a column
+   of M per (i, l) or (j, l)), so that the compiler sees no aliasing. */
 static void
 fill (spvi_core *c, double *M)
 {
   const int d = c->d, n = c->n, m = c->m, N = c->N;
-  const size_t nn = 2 * (size_t) d;
+  const size_t nn = 2 * (size_t) d, nb = nn * nn;
   const double hh = 0.5 * c->h;
+  const double *const A = c->A, *const g = c->g, *const phi = c->phi;
+  const double *const wdl = c->wdl, *const dl = c->dl;
   c->h_mat = c->h;
   c->noise_ok = 0;
-  memset (M, 0, (size_t) N * N * sizeof (double));
-#define MAT(row, col) M[(size_t) (col) * N + (row)]
   const int p0 = (n - 1) * d;     /* first P column, first R2 row */
-  for (int s = 1; s < n; s++)
-    for (int k = 0; k < d; k++)
+  /* the a_i columns: dR1_s/da_i, then dR2_r/da_i */
+  for (int i = 1; i < n; i++)
+    for (int l = 0; l < d; l++)
       {
-        int row = (s - 1) * d + k;
-        for (int j = 0; j < m; j++)
-          {
-            const double *Aj = spvi_A (c, j);
-            double gs = hh * c->g[j * n + s];
-            for (int l = 0; l < d; l++)
-              MAT (row, p0 + j * d + l) = gs * APP (Aj, k, l)
-                                          + (k == l ? c->wdl[j * n + s] : 0);
-          }
-        for (int i = 1; i < n; i++)
-          for (int l = 0; l < d; l++)
+        double *col = M + (size_t) ((i - 1) * d + l) * N;
+        for (int s = 1; s < n; s++)
+          for (int k = 0; k < d; k++)
             {
               double v = 0.0;
               for (int j = 0; j < m; j++)
-                v += c->g[j * n + s] * c->phi[j * n + i]
-                     * APQ (spvi_A (c, j), k, l);
-              MAT (row, (i - 1) * d + l) = hh * v;
+                v += g[j * n + s] * phi[j * n + i] * APQ (A + j * nb, k, l);
+              col[(s - 1) * d + k] = hh * v;
             }
+        for (int r = 0; r < m; r++)
+          {
+            const double *Ar = A + r * nb;
+            for (int k = 0; k < d; k++)
+              col[p0 + r * d + k] = hh * phi[r * n + i] * AQQ (Ar, k, l)
+                                    - (k == l ? dl[r * n + i] : 0);
+          }
       }
-  for (int r = 0; r < m; r++)
+  /* the P_j columns: dR1_s/dP_j, then dR2_r/dP_j (r = j only) */
+  for (int j = 0; j < m; j++)
     {
-      const double *Ar = spvi_A (c, r);
-      for (int k = 0; k < d; k++)
+      const double *Aj = A + j * nb;
+      for (int l = 0; l < d; l++)
         {
-          int row = p0 + r * d + k;
-          for (int l = 0; l < d; l++)
-            MAT (row, p0 + r * d + l) = hh * AQP (Ar, k, l);
-          for (int i = 1; i < n; i++)
-            for (int l = 0; l < d; l++)
-              MAT (row, (i - 1) * d + l) = hh * c->phi[r * n + i]
-                                           * AQQ (Ar, k, l)
-                                           - (k == l ? c->dl[r * n + i] : 0);
+          double *col = M + (size_t) (p0 + j * d + l) * N;
+          for (int s = 1; s < n; s++)
+            {
+              const double gs = hh * g[j * n + s];
+              for (int k = 0; k < d; k++)
+                col[(s - 1) * d + k] = gs * APP (Aj, k, l)
+                                       + (k == l ? wdl[j * n + s] : 0);
+            }
+          for (int i = p0; i < N; i++)
+            col[i] = 0.0;
+          for (int k = 0; k < d; k++)
+            col[p0 + j * d + k] = hh * AQP (Aj, k, l);
         }
     }
-#undef MAT
 }
 
 int

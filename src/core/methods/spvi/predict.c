@@ -341,16 +341,22 @@ spvi_predict_history (spvi_state *s, double h)
   int best_l = 0;
   double best = INFINITY;
   const double *w;
+  const float *const dh = s->dhist;
+  const double d0 = s->dscale[0];
   for (int L = 0; L < s->nhist && L <= SYM_SPVI_HIST; L++)
     {
-      double e = 0.0;
+      double e = 0.0, c[SYM_SPVI_HIST];
       w = sym_extrap_weights (L);
+      for (int l = 0; l < L; l++)
+        c[l] = w[l] * s->dscale[l + 1];
       for (int i = 0; i < N; i++)
         {
-          double v = s->dscale[0] * s->dhist[i];
+          double v = d0 * dh[i];
           for (int l = 0; l < L; l++)
-            v -= w[l] * s->dscale[l + 1] * s->dhist[(size_t) (l + 1) * N + i];
-          e = fmax (e, fabs (v));
+            v -= c[l] * dh[(size_t) (l + 1) * N + i];
+          /* fmax (e, |v|), inline: a NaN v leaves e */
+          if (fabs (v) > e)
+            e = fabs (v);
         }
       if (e < best)
         {
