@@ -226,6 +226,6 @@
    little per state, few enough that their steppers and stacks (some
    tens of KB each) stay in the cache and far below the output of a long
    run (bench/NOTES.md) */
-#define SYM_ENS_LIVE 128
+#define SYM_ENS_LIVE 256
 
 #endif
