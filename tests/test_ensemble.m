@@ -437,3 +437,8 @@
 %! sol = odeSPVI (@kep, [0 1], kep_y0 ([0.1 0.2]), symplecticset ("Ensemble", "on", "OutputFcn", @record_out));
 %!error <odeSE: Y0 must be a non-empty real numeric vector>
 %! t = odeSE (@kep, [0 1], ones (4, 2), symplecticset ("TimeStepSize", 0.1));
+## an output beyond any memory (1e12 rows of 20 members: 320 TB) is said
+## before the run, with the solver's name
+%!error <odeSV: out of memory for the output: Y of \d+ x 2 x 20 needs 3.2e\+05 GB>
+%! o = symplecticset ("TimeStepSize", 1e-5, "Ensemble", "on");
+%! [t, Y] = odeSV (@(t, y) [y(2,:); -y(1,:)], [0 1e7], repmat ([1; 0], 1, 20), o);

@@ -639,7 +639,15 @@ symmex_ensemble (const symmex_method *m, const void *own,
       E.R = (size_t) R;
       /* Y made by Octave's zeros and written in place: an array made by
          mxCreateNumericArray is copied when it is returned, which would
-         double the peak memory of a large ensemble */
+         double the peak memory of a large ensemble.  One that cannot be
+         had is said here (zeros would give its own message) */
+      const double ybytes = (double) R * n * K * sizeof (double);
+      if (! symmex_can_allocate (ybytes))
+        mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory for "
+                           "the output: Y of %ld x %d x %d needs %.3g GB; "
+                           "ask for fewer rows (output times in TSPAN, "
+                           "Refine) or fewer members in a call", name, R,
+                           n, K, ybytes / 1e9);
       mxArray *in[3] = { mxCreateDoubleScalar ((double) E.R),
                          mxCreateDoubleScalar (n), mxCreateDoubleScalar (K) };
       mxArray *out[1] = { NULL };

@@ -6,6 +6,7 @@
    through its descriptor. */
 #include "symmex.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -51,16 +52,22 @@ driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
 size_t symmex_alloc_failed;
 int symmex_in_ensemble;
 
+int
+symmex_can_allocate (double nbytes)
+{
+  if (! (nbytes >= 0 && nbytes <= (double) (SIZE_MAX / 2)))
+    return 0;
+  /* the only malloc of the MEX files: freed at once, with no user code
+     in between, so that nothing is held outside mxMalloc */
+  void *p = malloc ((size_t) nbytes);
+  free (p);
+  return p != NULL;
+}
+
 void *
 symmex_malloc_or_null (size_t nbytes)
 {
-  /* the only malloc of the MEX files: freed at once, with no user code
-     in between, so that nothing is held outside mxMalloc */
-  void *p = malloc (nbytes);
-  if (! p)
-    return NULL;
-  free (p);
-  return mxMalloc (nbytes);
+  return symmex_can_allocate ((double) nbytes) ? mxMalloc (nbytes) : NULL;
 }
 
 /* The core's allocator: mxMalloc (Octave frees it however the call

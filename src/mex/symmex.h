@@ -66,6 +66,8 @@ extern const symmex_method *const symmex_methods[];
 /* mxMalloc (nbytes), or NULL when the block cannot be had (mxMalloc
    itself would raise an error) */
 void *symmex_malloc_or_null (size_t nbytes);
+/* whether a block of nbytes could be had now (tried and given back) */
+int symmex_can_allocate (double nbytes);
 /* the rows of the output are kept in blocks of about this many bytes */
 #define SYMMEX_ROW_BLOCK ((size_t) 1 << 20)
 extern size_t symmex_alloc_failed;
