@@ -57,11 +57,15 @@ symmex_can_allocate (double nbytes)
 {
   if (! (nbytes >= 0 && nbytes <= (double) (SIZE_MAX / 2)))
     return 0;
+  if (nbytes == 0)
+    return 1;
   /* the only malloc of the MEX files: freed at once, with no user code
      in between, so that nothing is held outside mxMalloc */
   void *p = malloc ((size_t) nbytes);
+  if (! p)
+    return 0;
   free (p);
-  return p != NULL;
+  return 1;
 }
 
 void *

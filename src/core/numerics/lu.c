@@ -10,8 +10,8 @@
 
 #include <math.h>
 
-/* Partial pivoting, row by row as dgetf2: the first row of largest
-   |a(i,k)| pivots column k.  ipiv is 1-based as LAPACK's.  Returns 0, or
+/* Partial pivoting as LAPACK's unblocked dgetf2, column by column: the
+   first row of largest |a(i,k)| pivots column k.  ipiv is 1-based as LAPACK's.  Returns 0, or
    k + 1 for the first exactly zero pivot (the rest is not factored). */
 static int
 small_getrf (int n, double *a, int *ipiv)
