@@ -592,6 +592,15 @@ scenario_lu_sizes (void)
   CHECK (sym_lu_factor (&lu, NULL) == 0 && sym_lu_solve (&lu, b, NULL) == 0
          && b[0] == 3 && b[1] == 1 && b[2] == 2, "permutation: %g %g %g",
          b[0], b[1], b[2]);
+  /* a subnormal pivot: multipliers by division (its reciprocal is
+     Inf); A = [4e-310 0 0; 2e-310 1 0; 1e-310 0 1], x = (1, 1, 1) */
+  const double S[9] = { 4e-310, 2e-310, 1e-310, 0, 1, 0, 0, 0, 1 };
+  double bs[3] = { 4e-310, 1, 1 };
+  memcpy (lu.a, S, sizeof S);
+  CHECK (sym_lu_factor (&lu, NULL) == 0 && sym_lu_solve (&lu, bs, NULL) == 0
+         && fabs (bs[0] - 1) < 1e-14 && fabs (bs[1] - 1) < 1e-14
+         && fabs (bs[2] - 1) < 1e-14, "subnormal pivot: %g %g %g", bs[0],
+         bs[1], bs[2]);
   const double T[9] = { 1, -1, 1, 2, 1, 0, 0, 3, 1 };
   memcpy (lu.a, T, sizeof T);
   CHECK (sym_lu_factor (&lu, NULL) == 0 && lu.ipiv[0] == 1, "ties: pivot %d",

@@ -8,6 +8,7 @@
 #include "numerics.h"
 #include "tuning.h"
 
+#include <float.h>
 #include <math.h>
 
 /* Partial pivoting as LAPACK's unblocked dgetf2, column by column: the
@@ -38,9 +39,17 @@ small_getrf (int n, double *a, int *ipiv)
             cj[k] = cj[p];
             cj[p] = t;
           }
-      const double r = 1.0 / ck[k];
-      for (int i = k + 1; i < n; i++)
-        ck[i] *= r;
+      /* the multipliers by the pivot's reciprocal, unless that would
+         overflow (a subnormal pivot): then by division, as dgetf2 */
+      if (fabs (ck[k]) >= DBL_MIN)
+        {
+          const double r = 1.0 / ck[k];
+          for (int i = k + 1; i < n; i++)
+            ck[i] *= r;
+        }
+      else
+        for (int i = k + 1; i < n; i++)
+          ck[i] /= ck[k];
       for (int j = k + 1; j < n; j++)
         {
           double *cj = a + (size_t) j * n;
