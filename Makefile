@@ -20,8 +20,9 @@
 #   make bench          deps and all, then bench/run_benchmarks.m (RESULTS.md),
 #                       bench/run_methods.m (METHODS.md, methods-*.png),
 #                       bench/run_reversible.m (REVERSIBLE.md, its PNG),
-#                       bench/run_large.m (LARGE.md) and
-#                       bench/run_ensemble.m (ENSEMBLE.md)
+#                       bench/run_large.m (LARGE.md),
+#                       bench/run_ensemble.m (ENSEMBLE.md) and bench-core
+#   make bench-core     bench/core_cost.c, the core without Octave (CORE.md)
 #   make clean
 #
 # src/Makefile builds the compiled gateways __odeSE__.mex etc. in src/;
@@ -116,6 +117,20 @@ bench: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_reversible.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_large.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_ensemble.m
+	$(MAKE) --no-print-directory bench-core
+
+# The core alone, compiled as the gateways are (-O2) and linked with the
+# LAPACK and BLAS Octave links.
+CORE_SRC  := $(shell find src/core -name '*.c' | sort)
+CORE_LIBS  = -lklu -lsuitesparseconfig \
+             $(or $(shell $(MKOCTFILE) -p LAPACK_LIBS 2>/dev/null),-llapack) \
+             $(or $(shell $(MKOCTFILE) -p BLAS_LIBS 2>/dev/null),-lblas) -lm
+build/bench/core_cost: bench/core_cost.c $(CORE_SRC) $(shell find src/core -name '*.h')
+	@mkdir -p build/bench
+	$(CC) -std=c99 -Wall -O2 -Isrc/core -o $@ bench/core_cost.c $(CORE_SRC) $(CORE_LIBS)
+
+bench-core: deps build/bench/core_cost
+	build/bench/core_cost bench/CORE.md
 
 # Stage a clean copy (no build products) and pack it as DISTNAME/.  In a
 # git checkout only the files git tracks are packed (as they are in the
@@ -160,4 +175,4 @@ clean:
 	rm -f inst/*.mex
 
 .PHONY: all deps deps-memory setup demo check check-c check-octave valgrind \
-        check-memory bench dist install check-installed clean
+        check-memory bench bench-core dist install check-installed clean

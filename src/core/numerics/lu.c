@@ -12,10 +12,11 @@
 #include <math.h>
 
 /* Partial pivoting as LAPACK's unblocked dgetf2, column by column: the
-   first row of largest |a(i,k)| pivots column k.  ipiv is 1-based as LAPACK's.  Returns 0, or
-   k + 1 for the first exactly zero pivot (the rest is not factored). */
-static int
-small_getrf (int n, double *a, int *ipiv)
+   first row of largest |a(i,k)| pivots column k.  ipiv is 1-based as
+   LAPACK's.  Returns 0, or k + 1 for the first exactly zero pivot (the
+   rest is not factored). */
+int
+sym_lu_small_factor (int n, double *a, int *ipiv)
 {
   for (int k = 0; k < n; k++)
     {
@@ -62,10 +63,10 @@ small_getrf (int n, double *a, int *ipiv)
   return 0;
 }
 
-/* b <- A \ b from small_getrf's factors: the row swaps, L y = b (unit
-   diagonal), U x = y, each column of the factors taken at once */
-static void
-small_getrs (int n, const double *a, const int *ipiv, double *b)
+/* b <- A \ b from sym_lu_small_factor's factors: the row swaps, L y = b
+   (unit diagonal), U x = y, each column of the factors taken at once */
+void
+sym_lu_small_solve (int n, const double *a, const int *ipiv, double *b)
 {
   for (int k = 0; k < n; k++)
     {
@@ -134,8 +135,10 @@ sym_lu_factor (sym_lu *lu, sym_counters *c)
         lu->factored = 0;
         return SYM_SINGULAR;
       }
-  info = lu->n <= SYM_LU_SMALL ? small_getrf (lu->n, lu->a, lu->ipiv)
-                               : sym_getrf (0, lu->n, lu->a, lu->ipiv);
+  if (lu->n <= SYM_LU_SMALL)
+    info = sym_lu_small_factor (lu->n, lu->a, lu->ipiv);
+  else
+    info = sym_getrf (0, lu->n, lu->a, lu->ipiv);
   lu->factored = (info == 0);
   return info == 0 ? SYM_SUCCESS : SYM_SINGULAR;
 }
@@ -149,7 +152,7 @@ sym_lu_solve (sym_lu *lu, double *b, sym_counters *c)
   if (c)
     c->nsolve++;
   if (lu->n <= SYM_LU_SMALL)
-    small_getrs (lu->n, lu->a, lu->ipiv, b);
+    sym_lu_small_solve (lu->n, lu->a, lu->ipiv, b);
   else
     info = sym_getrs (0, lu->n, lu->a, lu->ipiv, b);
   return info == 0 ? SYM_SUCCESS : SYM_EBADINPUT;

@@ -56,6 +56,11 @@ void sym_lu_free (sym_lu *lu);
 /* SYM_SINGULAR if singular or not finite */
 int sym_lu_factor (sym_lu *lu, sym_counters *c);
 int sym_lu_solve (sym_lu *lu, double *b, sym_counters *c); /* b <- A \ b */
+/* the loops sym_lu takes up to SYM_LU_SMALL unknowns (for any n): the
+   pivots dgetrf takes and its factors up to round-off; 0, or the 1-based
+   column of a zero pivot */
+int sym_lu_small_factor (int n, double *a, int *ipiv);
+void sym_lu_small_solve (int n, const double *a, const int *ipiv, double *b);
 
 /* ---------------------------------------------------------------- sparse */
 /* (sparse.c) a and b have the same n, colptr and rowind */
