@@ -18,133 +18,77 @@
 ## The state is y = [q; p], q and p in R^d.  @var{fcn} returns Hamilton's
 ## equations, @code{dy = fcn (t, y)} = [dH/dp; -dH/dq + F], a column of
 ## length 2d; F(t, q, p) is an optional forcing term.  It may return the
-## Hessian of H in y as a second output, @code{[dy, ddy] = fcn (t, y)},
-## ddy 2d-by-2d or its column-major vector: build it only when
-## @code{nargout > 1}, as in the example below.
+## Hessian of H in y as a second output, @code{[dy, ddy] = fcn (t, y)}
+## (build it only when @code{nargout > 1}, as @code{symplectic_kepler}
+## does); without it Newton's matrix comes from finite differences.
 ##
 ## On each step q is a polynomial of @code{Q_DoFs} Legendre modes, and
 ## the action is approximated by Gauss--Legendre quadrature on
-## @code{Nodes} nodes with a momentum at each node; the discrete
-## Euler--Lagrange equations of the step are solved by Newton's method.
-## The pair (Q_DoFs, Nodes) = (n, m) sets the order,
+## @code{Nodes} nodes.  The pair (Q_DoFs, Nodes) = (n, m) sets the order,
 ## 2*min(n-1, 2m-n+1): n = m+1 gives order 2m, the best for m nodes, and
-## the default (4, 3) order 6; (2, 1) is the implicit midpoint rule.
-## Pairs with n > 2m are refused; pairs with n-1 > m lose order and
-## can fail where d2H/dq2 is zero or small: keep n <= m+1.
+## the default (4, 3) order 6; keep n <= m+1.
 ##
-## @strong{Why a fixed step.}  With @code{TimeStepSize} (or
-## @code{TimeStepNumber}) every step is one and the same symplectic map,
-## which follows the exact flow of a modified Hamiltonian close to H: the
-## energy error oscillates without drift however long the run, and the
-## momenta of the symmetries of H are conserved to round-off.  Adaptive
-## steps (the default) control the local error instead, and each new step
-## size is a new map.  Use a fixed step for long runs, or
-## @code{StepControl} @qcode{"reversible"}: steps that follow a step
-## density by a time-symmetric recurrence, which keeps the energy error
-## bounded like a fixed step while the steps crowd where the motion is
-## fast (@code{help odeSV} says how; here eps = RelTol^(1/order), at most
-## 0.05).  The default density needs f at the step points, a call per
-## step that the dense output (@code{Refine} > 1, output times, events,
-## @code{Dense}) makes anyway and shares; a run without dense output
-## saves it with a @code{StepDensityFcn}.  The step being symmetric for
-## every pair (n, m), so is the run.
+## With a fixed step (@code{TimeStepSize} or @code{TimeStepNumber}) every
+## step is the same symplectic map: the energy error stays bounded
+## however long the run, and the momenta of the symmetries of H are
+## conserved to round-off; the steps can be long.  Adaptive steps (the
+## default) control the local error instead.  @code{StepControl}
+## @qcode{"reversible"} gives adaptive steps that keep the energy bounded
+## too, as in @code{odeSV}.
 ##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
-## @code{odeSE}; @var{sol} has the fields of @code{ode45} and also order
-## (the order used), Q_DoFs and Nodes.
+## @code{odeSE}; @var{sol} also has order (the order used), Q_DoFs and
+## Nodes.
+##
+## The options a user sets first:
 ##
 ## @table @code
-## @item Nodes (alias P_DoFs), Q_DoFs, PolynomialDegree
-## m, 1 to 40 (default 3); n, 2 to min(2m, 41) (default m+1); the
-## degree 1 to 39.
-## @code{PolynomialDegree} sets n = degree+1, and m = degree+1 unless
-## Nodes is given.
+## @item Nodes, Q_DoFs
+## m, 1 to 40 (default 3); n, 2 to min(2m, 41) (default m+1).
 ## @item TimeStepSize, TimeStepNumber
 ## Fixed step h, or a number of fixed steps.  The last step ends on tf.
 ## @item RelTol, AbsTol, NormControl, InitialStep, MaxStep
 ## Adaptive steps, as in @code{ode45} (defaults 1e-3, 1e-6, off,
-## automatic, |tf-t0|/10; reversible steps: see above).  The error is
-## estimated with a companion
-## solution of one more mode and one more node, and the run advances with
-## it, so @code{sol.order} is the companion's.
+## automatic, |tf-t0|/10).  The run advances with a companion of one
+## more mode and one more node, so @code{sol.order} is the companion's.
 ## @item StepControl, StepDensityFcn
-## @qcode{"standard"} (default) or @qcode{"reversible"} (above), and the
-## step density of the latter, as for @code{odeSV}.
-## @item Jacobian, HamiltonianHessFcn
-## Newton's matrix comes from the first of: @code{Jacobian} (df/dy),
-## @code{HamiltonianHessFcn} (a handle returning the Hessian), the second
-## output of @var{fcn}, finite differences of @var{fcn}.
-## @code{sol.stats.jacobian_source} says which one served.
-## A sparse Hessian or Jacobian is used sparse (see NewtonSystem); the
-## one call of the function at (t0, y0) that tells is counted in
-## @code{npds}.
-## @item JPattern
-## The nonzero pattern of df/dy (2d-by-2d, sparse or full): finite
-## differences then step the columns that share no row together, a few
-## calls of @var{fcn} for a banded system instead of 2d per node.  Given
-## as a sparse matrix, the matrices it makes are sparse too.
-## @item NewtonMatrix
-## @qcode{"kept"}: Newton's matrix and its LU are kept across steps while
-## Newton converges fast; @qcode{"new"}: a new one at every step (fewer
-## calls of @var{fcn}, but Hessians on every step).  Default
-## @qcode{"auto"}: @qcode{"new"} for Vectorized finite differences of at
-## most 64 unknowns, else @qcode{"kept"}.
-## @item NewtonSystem
-## @qcode{"stages"}: Newton's system of (Q_DoFs-1+Nodes)*d unknowns is
-## reduced, with one Jacobian for all nodes, to ceil(Nodes/2) systems of
-## size 2d (one real, the others complex), or of size d when the Hessian
-## is full and H separable; a sparse Hessian or Jacobian keeps them
-## sparse (KLU), so that memory and time grow linearly with d for a
-## banded one.  Pairs Q_DoFs = Nodes+1 only.  @qcode{"full"}: one dense
-## LU of the whole system (a sparse Hessian is made full).  Default
-## @qcode{"auto"}: @qcode{"stages"} for those pairs when the Hessian or
-## Jacobian is sparse or the system has more than 600 unknowns, else
-## @qcode{"full"}; the other pairs with a sparse Hessian or Jacobian
-## factor the whole system sparse, with one Jacobian for all nodes.
-## @item NewtonTol, MaxNewtonIterations
-## Newton's relative tolerance (1e-14; fixed steps converge to
-## NewtonTol/100, and so do reversible ones) and iterations per solve
-## (10).
+## @qcode{"standard"} (default) or @qcode{"reversible"}, and the step
+## density of the latter, as in @code{odeSV}.
 ## @item Vectorized
 ## @qcode{"on"}: @var{fcn} takes a 2d-by-k matrix of states and a 1-by-k
 ## row of times; all nodes of a Newton iteration then take one call, the
 ## fastest form for long runs.
+## @item Jacobian, HamiltonianHessFcn, JPattern
+## Other sources of Newton's matrix, as in @code{odeSE}; a sparse one
+## keeps Newton's systems sparse, for large d.
+## @item NewtonMatrix, NewtonSystem
+## How Newton's matrix is kept and its systems solved: @qcode{"auto"}
+## (default) chooses; see the user guide.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}, on the method's own dense output.
-## @code{Refine} defaults to 4 rows per step of an adaptive run, to the
-## step points with a fixed step.  The Events function is also evaluated
-## at Nodes points inside each step, so that a pair of zeros inside one
-## long step is found.
-## @item Hamiltonian, Dense, MaxSteps
+## @item Hamiltonian, Dense, Ensemble, Parallel
 ## As in @code{odeSE}.
-## @item Ensemble, Parallel
-## Many initial states at once, the columns of @var{y0}, as in
-## @code{odeSE}.
 ## @end table
 ##
 ## A run that cannot go on warns, with an identifier
 ## @code{symplectic:@dots{}}, and returns every row computed so far.
+## Every option, the pairs and their orders, and Newton's method in
+## detail: the user guide, @file{doc/user-guide.md} in the package's
+## directory, @code{pkg ("list", "symplectic")@{1@}.dir}.
 ##
 ## Example: Kepler's problem, 100 periods of 100 steps each.
 ##
 ## @example
 ## @group
-## function [dy, ddy] = kepler (t, y)
-##   q = y(1:2);  r = norm (q);
-##   dy = [y(3:4); -q / r^3];
-##   if (nargout > 1)
-##     ddy = [(eye(2) - 3*(q*q')/r^2) / r^3, zeros(2); zeros(2), eye(2)];
-##   endif
-## endfunction
 ## e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
 ## opts = symplecticset ("TimeStepSize", 2*pi/100, "Nodes", 3);
-## [t, y] = odeSPVI (@@kepler, [0 200*pi], y0, opts);
+## [t, y] = odeSPVI (@@symplectic_kepler, [0 200*pi], y0, opts);
 ## H = sum (y(:,3:4).^2, 2)/2 - 1 ./ sqrt (sum (y(:,1:2).^2, 2));
 ## printf ("energy error: %.1e in the first 10 periods, %.1e in the last\n",
 ##         max (abs (H(t <= 20*pi) + 0.5)), max (abs (H(t >= 180*pi) + 0.5)));
 ## @end group
 ## @end example
-## @seealso{symdeval, odeSE, odeSV, symplecticset, ode45, odeset, odeplot}
+## @seealso{symdeval, odeSE, odeSV, symplecticset, symplectic_kepler, ode45, odeset, odeplot}
 ## @end deftypefn
 
 function varargout = odeSPVI (varargin)
@@ -165,51 +109,71 @@ function varargout = odeSPVI (varargin)
 endfunction
 
 %!demo
-%! ## Phase portrait of the pendulum with large steps (h = 0.5) drawn from
-%! ## the method's own dense output (Refine = 8); the dots are the steps.
+%! ## The pendulum with long steps (h = 0.5), drawn from the method's own
+%! ## dense output (Refine = 8; the dots are the steps); the energy error
+%! ## over 20 periods of Kepler's problem (e = 0.6), bounded for odeSPVI
+%! ## (order 6, 50 steps per period) and growing for ode45; and events:
+%! ## the orbit's crossings of the q1 axis, located on the dense output.
 %! pendulum = @(t, y) [y(2); -sin(y(1))];
 %! opts = symplecticset ("TimeStepSize", 0.5, "Refine", 8);
-%! figure ();
-%! hold on;
+%! orbits = {};
 %! for q0 = [0.5, 1.5, 2.5, 3]
 %!   [t, y] = odeSPVI (pendulum, [0 20], [q0; 0], opts);
-%!   plot (y(:,1), y(:,2), "b-", y(1:8:end,1), y(1:8:end,2), "k.");
+%!   orbits{end+1} = y;
 %! endfor
-%! hold off;
-%! axis ([-pi pi -2.2 2.2]);
-%! xlabel ("q");  ylabel ("p");
-%! title ("odeSPVI: pendulum, h = 0.5, dense output between the steps");
-
-%!demo
-%! ## Energy error over 20 periods of Kepler's problem (eccentricity 0.6):
-%! ## odeSPVI (order 6, 50 steps per period) keeps it bounded (no drift);
-%! ## that of ode45 grows with time.
-%! kepler = @(t, y) [y(3:4); -y(1:2) / norm(y(1:2))^3];
 %! H = @(y) sum (y(:,3:4).^2, 2)/2 - 1 ./ sqrt (sum (y(:,1:2).^2, 2));
 %! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];  tf = 40*pi;
-%! [t1, y1] = odeSPVI (kepler, [0 tf], y0, symplecticset ("TimeStepSize", 2*pi/50));
-%! [t2, y2] = ode45 (kepler, [0 tf], y0, odeset ("RelTol", 1e-5, "AbsTol", 1e-8));
-%! figure ();
-%! semilogy (t1 / (2*pi), max (abs (H (y1) + 0.5), eps), "b",
-%!           t2 / (2*pi), max (abs (H (y2) + 0.5), eps), "r");
-%! xlabel ("periods");  ylabel ("|H(t) - H(0)|");
-%! legend ("odeSPVI, h = 2\\pi/50", "ode45, RelTol = 1e-5", "location", "southeast");
-%! title ("Kepler, e = 0.6: energy error");
-
-%!demo
-%! ## Events: the orbit's crossings of the q1 axis (periapsis and
-%! ## apoapsis), located on the dense output; adaptive steps.
-%! kepler = @(t, y) [y(3:4); -y(1:2) / norm(y(1:2))^3];
-%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! [t1, y1] = odeSPVI (@symplectic_kepler, [0 tf], y0,
+%!                     symplecticset ("TimeStepSize", 2*pi/50));
+%! [t2, y2] = ode45 (@symplectic_kepler, [0 tf], y0,
+%!                   odeset ("RelTol", 1e-5, "AbsTol", 1e-8));
+%! dH1 = max (abs (H (y1) + 0.5), eps);
+%! dH2 = max (abs (H (y2) + 0.5), eps);
+%! printf ("Kepler, e = 0.6, 20 periods: largest energy error in the first and the last 2 periods\n");
+%! printf ("  odeSPVI, h = T/50:     %.2e  %.2e\n", max (dH1(t1 <= tf/10)), max (dH1(t1 >= 0.9*tf)));
+%! printf ("  ode45, RelTol = 1e-5:  %.2e  %.2e\n", max (dH2(t2 <= tf/10)), max (dH2(t2 >= 0.9*tf)));
 %! opts = symplecticset ("RelTol", 1e-10, "AbsTol", 1e-12, "Refine", 4,
 %!                       "Events", @(t, y) deal (y(2), 0, 0));
-%! [t, y, te, ye] = odeSPVI (kepler, [0 6*pi], y0, opts);
-%! figure ();
-%! plot (y(:,1), y(:,2), "b", ye(:,1), ye(:,2), "ro");
-%! axis equal;
-%! xlabel ("q_1");  ylabel ("q_2");
-%! title (sprintf ("odeSPVI: %d axis crossings, at t/pi = %s", numel (te),
-%!                 mat2str (te' / pi, 6)));
+%! [t, y, te, ye] = odeSPVI (@symplectic_kepler, [0 6*pi], y0, opts);
+%! printf ("axis crossings at t/pi = %s: distance from the exact k*pi %.2e\n",
+%!         mat2str (te' / pi, 6), max (abs (te' - pi * (1:numel (te)))));
+%! ## the figure; with no display it is drawn off screen and written to a
+%! ## PNG, and with no graphics toolkit that works the numbers are all
+%! warning ("off", "Octave:gnuplot-graphics", "local");
+%! headless = ! have_window_system ();
+%! try
+%!   if (headless)
+%!     fig = figure ("visible", "off");
+%!   else
+%!     fig = figure ();
+%!   endif
+%!   subplot (2, 2, 1);
+%!   hold on;
+%!   for i = 1:numel (orbits)
+%!     plot (orbits{i}(:,1), orbits{i}(:,2), "b-",
+%!           orbits{i}(1:8:end,1), orbits{i}(1:8:end,2), "k.");
+%!   endfor
+%!   hold off;
+%!   axis ([-pi pi -2.2 2.2]);
+%!   xlabel ("q");  ylabel ("p");
+%!   title ("pendulum, h = 0.5");
+%!   subplot (2, 2, 2);
+%!   semilogy (t1 / (2*pi), dH1, "b", t2 / (2*pi), dH2, "r");
+%!   xlabel ("periods");  ylabel ("|H(t) - H(0)|");
+%!   legend ("odeSPVI, h = 2\\pi/50", "ode45, RelTol = 1e-5", "location", "southeast");
+%!   title ("Kepler, e = 0.6: energy error");
+%!   subplot (2, 2, 3);
+%!   plot (y(:,1), y(:,2), "b", ye(:,1), ye(:,2), "ro");
+%!   axis equal;
+%!   xlabel ("q_1");  ylabel ("q_2");
+%!   title (sprintf ("%d axis crossings", numel (te)));
+%!   if (headless)
+%!     print (fig, "odeSPVI-demo.png", "-dpng", "-r100");
+%!     printf ("no display: figure written to %s\n", fullfile (pwd, "odeSPVI-demo.png"));
+%!   endif
+%! catch err
+%!   printf ("no figure (%s)\n", err.message);
+%! end_try_catch
 
 ## Representative tests (the full ode45-contract tests are in
 ## tests/test_ode45_contract.m).

@@ -20,11 +20,14 @@
 ## @qcode{"on"}, which keeps each step's continuous output in
 ## @code{sol.dense} (its values at the step's Chebyshev--Lobatto points;
 ## for @code{odeSV} and @code{odeSPVI}'s fixed steps it costs one call
-## of @var{fcn} per step more: f at the step's end).  The values are those that the solver gives at
-## output times: the cubic Hermite interpolant of the step's ends for
-## @code{odeSE} and @code{odeSV}; for @code{odeSPVI} its own polynomial
-## through the nodes, of order Nodes+2 between the steps of a fixed-step
-## run (Nodes+3 in adaptive runs).
+## of @var{fcn} per step more: f at the step's end).  The values are
+## those that the solver gives at output times: the cubic Hermite
+## interpolant of the step's ends for @code{odeSE} and @code{odeSV}; for
+## @code{odeSPVI} its own polynomial through the nodes, of order Nodes+2
+## between the steps of a fixed-step run (Nodes+3 in adaptive runs).
+## More in the user guide,
+## @file{doc/user-guide.md} in the package's directory,
+## @code{pkg ("list", "symplectic")@{1@}.dir}.
 ##
 ## @example
 ## @group
@@ -90,6 +93,42 @@ function y = symdeval (sol, t)
   endfor
 
 endfunction
+
+%!demo
+%! ## The solution between the steps: odeSPVI with long fixed steps
+%! ## (h = 0.5) on the oscillator, evaluated by symdeval on a fine grid
+%! ## from the run's dense output, against the exact solution cos(t).
+%! opts = symplecticset ("TimeStepSize", 0.5, "Dense", "on");
+%! sol = odeSPVI (@(t, y) [y(2); -y(1)], [0 10], [1; 0], opts);
+%! tq = linspace (0, 10, 401);
+%! y = symdeval (sol, tq);
+%! printf ("%d steps of 0.5; error of symdeval on 401 times: %.2e (at the steps %.2e)\n",
+%!         numel (sol.x) - 1, max (abs (y(1,:) - cos (tq))),
+%!         max (abs (sol.y(1,:) - cos (sol.x))));
+%! ## the figure; with no display it is drawn off screen and written to a
+%! ## PNG, and with no graphics toolkit that works the numbers are all
+%! warning ("off", "Octave:gnuplot-graphics", "local");
+%! headless = ! have_window_system ();
+%! try
+%!   if (headless)
+%!     fig = figure ("visible", "off");
+%!   else
+%!     fig = figure ();
+%!   endif
+%!   subplot (2, 1, 1);
+%!   plot (tq, y(1,:), "b", sol.x, sol.y(1,:), "ko");
+%!   xlabel ("t");  ylabel ("q");
+%!   title ("symdeval between the steps (o)");
+%!   subplot (2, 1, 2);
+%!   semilogy (tq, max (abs (y(1,:) - cos (tq)), eps));
+%!   xlabel ("t");  ylabel ("|q - cos(t)|");
+%!   if (headless)
+%!     print (fig, "symdeval-demo.png", "-dpng", "-r100");
+%!     printf ("no display: figure written to %s\n", fullfile (pwd, "symdeval-demo.png"));
+%!   endif
+%! catch err
+%!   printf ("no figure (%s)\n", err.message);
+%! end_try_catch
 
 %!test
 %! ## odeSPVI, fixed steps: symdeval gives the values the solver gives at

@@ -17,89 +17,48 @@
 ## fields, plus the fields of this package, without the warning that
 ## @code{odeset} gives for names it does not know.  Names are matched
 ## without regard to case; the fields of the result have the canonical
-## spelling below.  The package's fields are:
+## spelling below.  With no arguments and no output it lists the fields,
+## their values and defaults.  The package's fields:
 ##
 ## @table @code
 ## @item TimeStepSize
-## Constant step size h > 0: no error control, the mode in which the
-## long-time behaviour of energy and momenta is guaranteed.  The last step
-## is shortened to end exactly on the final time.
+## Constant step size h > 0: the mode in which the long-time behaviour
+## of energy and momenta is guaranteed.  Default: adaptive steps.
 ## @item TimeStepNumber
-## With @code{TimeStepSize}: take exactly this many steps from t0 (the end
-## of @var{tspan} then only gives the direction; where t0 + N*h rounds to
-## within 16 ulps of a time of @var{tspan}, as 3*0.7 does of 2.1, the last
-## step ends on that time and its row is output).  Alone: that many equal
-## steps over @var{tspan}.
-## @item Q_DoFs
-## @code{odeSPVI}: number of Legendre modes of q on each step (polynomial
-## degree Q_DoFs-1), at least 2 and at most 2*Nodes and 41.  Default
-## Nodes+1.
-## @item Nodes
-## @code{odeSPVI}: number of Gauss--Legendre quadrature nodes (1 to 40).
-## Default 3.  @code{P_DoFs} is accepted as an alias.
-## @item PolynomialDegree
-## @code{odeSPVI}: sets Q_DoFs = degree+1, and Nodes = degree+1 unless
-## Nodes is given (degree 1 to 39).
-## Given together with Q_DoFs (or P_DoFs with Nodes) it
-## must agree with it: @code{odeSPVI} refuses a disagreement.
-## @item HamiltonianHessFcn
-## Handle @code{hess (t, y, @dots{})} returning the Hessian of H with
-## respect to y = [q; p], as a 2d-by-2d matrix or its column-major vector.
+## With @code{TimeStepSize}: take exactly this many steps from t0.
+## Alone: that many equal steps over @var{tspan}.
 ## @item Separable
-## @qcode{"on"} when H = T(p) + V(q) (and no forcing depends on p):
-## @code{odeSE} and @code{odeSV} then take explicit steps.  Default
-## @qcode{"off"}.
+## @qcode{"on"} when H = T(p) + V(q): @code{odeSE} and @code{odeSV} then
+## take explicit steps.  Default @qcode{"off"}.
 ## @item SecondOrder
 ## @qcode{"on"}: @code{odeSE} and @code{odeSV} take @var{fcn} as the
-## acceleration, @code{a = fcn (t, q)} = -dV/dq of unit masses, and y =
-## [q; v] (explicit steps, one call of @var{fcn} per force stage).
-## Default @qcode{"off"}.
+## acceleration, @code{a = fcn (t, q)}, and y = [q; v].
 ## @item Method
-## @code{odeSV}: the Verlet composition or splitting method to use
-## (@qcode{"verlet"}, @qcode{"yoshida4"}, @dots{}; the table is in
-## @code{help odeSV}).  Default @qcode{"verlet"}.
+## @code{odeSV}: the Verlet composition or splitting method
+## (@qcode{"verlet"}, @qcode{"yoshida4"}, @dots{}; @code{help odeSV}).
 ## @item CompensatedSummation
-## @code{odeSV}: @qcode{"on"} sums the updates of explicit (fixed or
-## reversible) steps with compensation, which keeps the round-off of the
-## energy of very long runs near that of a single step.  Default
-## @qcode{"off"}.
-## @item StepControl
-## Adaptive steps: @qcode{"standard"} (error estimates, as
-## @code{ode45}) or @qcode{"reversible"} (a time-symmetric step density
-## that keeps the energy error bounded; @code{odeSV} and @code{odeSPVI},
-## see @code{help odeSV}).  Default @qcode{"standard"}.
-## @item StepDensityFcn
-## With @code{StepControl} @qcode{"reversible"}: handle
-## @code{rho = fcn (t, y, @dots{})} returning the step density rho > 0
-## (1/time; the steps are eps/rho).  Default: |f(t,y)| / |y|.
-## @item NewtonTol
-## Stopping tolerance of Newton's method, relative to the size of q for
-## the unknowns of q and to the size of p for those of p (in the units of
-## each).
-## Default 1e-14.  Fixed steps are converged to NewtonTol/100
-## (@code{odeSPVI}) and NewtonTol/1000 (@code{odeSE}, @code{odeSV}).
-## @item MaxNewtonIterations
-## Newton iterations per solve before the matrix is refreshed or the step
-## is retried.  Default 10.
-## @item NewtonMatrix
-## @code{odeSPVI}: @qcode{"kept"} keeps Newton's matrix (and its LU) across
-## steps while Newton converges fast, evaluating the Hessian or Jacobian
-## seldom; @qcode{"new"} evaluates it at the start of every step, so that
-## the first Newton correction is exact and often the only one (fewer
-## calls of @var{fcn}, but Hessians on every step).  Default
-## @qcode{"auto"}: @qcode{"new"} when @code{Vectorized} is on and the
-## matrix comes from finite differences (the nodes and their perturbed
-## states then take one call) and (Q_DoFs-1+Nodes)*d <= 64, else
-## @qcode{"kept"}.  Pairs other than Q_DoFs = Nodes+1 keep their matrix.
-## @item NewtonSystem
-## @code{odeSPVI}: how Newton's linear systems are solved.
-## @qcode{"full"}: one LU of the whole step system, of size
-## (Q_DoFs-1+Nodes)*d; @qcode{"stages"}: ceil(Nodes/2) systems of size 2d
-## (d for a separable H with a full Hessian) that one Jacobian for all
-## nodes reduces it to, for the pairs Q_DoFs = Nodes+1 only.  Default
-## @qcode{"auto"}: @qcode{"stages"} when the Hessian or Jacobian is
-## sparse, or when (Q_DoFs-1+Nodes)*d > 600, for those pairs; else
-## @qcode{"full"}.
+## @code{odeSV}: @qcode{"on"} sums the updates of explicit steps with
+## compensation.  Default @qcode{"off"}.
+## @item Nodes, Q_DoFs, PolynomialDegree
+## @code{odeSPVI}: Gauss--Legendre nodes m (1 to 40, default 3;
+## @code{P_DoFs} is an alias), Legendre modes of q (2 to min(2m, 41),
+## default m+1), or the degree of q, which sets both.
+## @item StepControl, StepDensityFcn
+## @qcode{"standard"} (error estimates, as @code{ode45}; the default) or
+## @qcode{"reversible"} (@code{odeSV}, @code{odeSPVI}: time-symmetric
+## steps that keep the energy error bounded), and the latter's step
+## density, a handle @code{rho = fcn (t, y, @dots{})} in steps per unit
+## time.
+## @item HamiltonianHessFcn
+## Handle @code{hess (t, y, @dots{})} returning the Hessian of H with
+## respect to y = [q; p], 2d-by-2d or its column-major vector.
+## @item NewtonTol, MaxNewtonIterations
+## Newton's tolerance, relative to the size of q and of p (default
+## 1e-14), and its iterations per solve (default 10).
+## @item NewtonMatrix, NewtonSystem
+## @code{odeSPVI}: how Newton's matrix is kept (@qcode{"kept"},
+## @qcode{"new"}) and its systems solved (@qcode{"full"},
+## @qcode{"stages"}).  Default @qcode{"auto"}.
 ## @item MaxSteps
 ## Largest number of steps of a run.  Default: no limit.
 ## @item Hamiltonian
@@ -109,47 +68,27 @@
 ## @item Dense
 ## @qcode{"on"}: @code{sol} keeps each step's dense output, which
 ## @code{symdeval} evaluates at any time.  Default @qcode{"off"}.
-## @item Ensemble
+## @item Ensemble, Parallel
 ## @qcode{"on"}: the columns of @var{y0} are the initial states of
-## members integrated together (outputs in @code{help odeSE}, section
-## Ensembles).  Default @qcode{"off"}.
-## @item Parallel
-## With @code{Ensemble} @qcode{"on"}: a positive integer P, the number of
-## local processes the members are split across (1, the default: this
-## process), or the connections @code{pconnect} returned, one process per
-## server.  The columns of @var{y0} go in min(P, K) contiguous chunks, as
-## even as possible, each run as an ensemble in another Octave process
-## (@code{parcellfun}, or the servers), and the outputs are merged: they
-## equal those of the run in this process to the bit, whatever P.  Stats
-## are printed per chunk, under its members' range; the other processes'
-## warnings are given here.  @var{fcn} and the functions it calls must
-## exist in the other processes (anonymous functions go with their
-## values, named ones must be function files on the path there).  Needs
-## Octave's package @code{parallel}; not with @code{OutputFcn}, nor
-## without outputs (the plot).
+## members integrated together; the number of local processes to split
+## them across, or the connections @code{pconnect} returned (package
+## @code{parallel}).  Default @qcode{"off"}, 1.
 ## @end table
 ##
-## @code{Explicit}, the 2013 odepkg name of @code{Separable}, is accepted
-## too.  A name that neither @code{odeset} nor this package knows gets a
-## warning with the nearest known name, and is kept in the result.
-##
-## Arguments are taken in order, a later value of a name replacing an
-## earlier one; a field of a struct replaces only when it is not empty (as
-## @code{odeset} documents for @var{newopts}; Octave 7's @code{odeset}
-## empties the fields of @var{oldopts} that are empty in @var{newopts},
-## @code{symplecticset} does not), a name/value pair always.
-##
-## The result holds all the package's fields (empty unless set), so
-## @code{odeset (opts, @dots{})} warns once for each of them, set or not;
-## add options to such a struct with @code{symplecticset (opts, @dots{})}.
-##
-## Setting a field by assignment, @code{opts.Q_DoFs = 4}, works as well;
-## scripts written for the odepkg solvers, which passed these names to
-## @code{odeset}, keep working (with @code{odeset}'s warning).
+## A name that neither @code{odeset} nor this package knows gets a
+## warning with the nearest known name.  Arguments are taken in order, a
+## later value of a name replacing an earlier one; a field of a struct
+## replaces only when it is not empty, a name/value pair always.  Add
+## options to a struct with @code{symplecticset (opts, @dots{})}, which
+## does not warn (@code{odeset} warns for the package's fields); setting
+## a field by assignment, @code{opts.Nodes = 4}, works as well.  Every
+## option, its values and the solvers that use it: the user guide,
+## @file{doc/user-guide.md} in the package's directory,
+## @code{pkg ("list", "symplectic")@{1@}.dir}.
 ##
 ## @example
 ## @group
-## opts = symplecticset ("TimeStepSize", 0.01, "Nodes", 4, "RelTol", 1e-8);
+## opts = symplecticset ("TimeStepSize", 0.01, "Nodes", 4);
 ## [t, y] = odeSPVI (@@(t, y) [y(2); -sin(y(1))], [0 10], [1; 0], opts);
 ## @end group
 ## @end example
@@ -306,6 +245,45 @@ function [ours, names, vals] = put (ours, names, vals, fields, name, v, always)
     vals{k} = v;
   endif
 endfunction
+
+%!demo
+%! ## Options: one struct of symplecticset for the common settings, and
+%! ## symplecticset (opts, ...) for each variant.  Kepler's problem
+%! ## (e = 0.6, 10 periods, 50 fixed steps per period) with odeSPVI at
+%! ## 2 to 5 nodes: the energy error falls with the order, 2*Nodes.
+%! opts = symplecticset ("TimeStepSize", 2*pi/50, "Vectorized", "on");
+%! H = @(y) sum (y(:,3:4).^2, 2)/2 - 1 ./ sqrt (sum (y(:,1:2).^2, 2));
+%! e = 0.6;  y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! printf ("odeSPVI, Kepler e = 0.6, h = T/50, 10 periods:\n");
+%! runs = {};
+%! for m = 2:5
+%!   o = symplecticset (opts, "Nodes", m);
+%!   [t, y] = odeSPVI (@symplectic_kepler, [0 20*pi], y0, o);
+%!   dH = max (abs (H (y) + 0.5), eps);
+%!   runs(end+1, :) = {t / (2*pi), dH};
+%!   printf ("  Nodes = %d (order %2d): largest energy error %.2e\n", m, 2*m, max (dH));
+%! endfor
+%! ## the figure; with no display it is drawn off screen and written to a
+%! ## PNG, and with no graphics toolkit that works the numbers are all
+%! warning ("off", "Octave:gnuplot-graphics", "local");
+%! headless = ! have_window_system ();
+%! try
+%!   if (headless)
+%!     fig = figure ("visible", "off");
+%!   else
+%!     fig = figure ();
+%!   endif
+%!   semilogy (runs'{:});
+%!   xlabel ("periods");  ylabel ("|H(t) - H(0)|");
+%!   legend ("Nodes = 2", "3", "4", "5", "location", "eastoutside");
+%!   title ("Kepler, e = 0.6, h = T/50: energy error");
+%!   if (headless)
+%!     print (fig, "symplecticset-demo.png", "-dpng", "-r100");
+%!     printf ("no display: figure written to %s\n", fullfile (pwd, "symplecticset-demo.png"));
+%!   endif
+%! catch err
+%!   printf ("no figure (%s)\n", err.message);
+%! end_try_catch
 
 ## odeset warns for the package's fields of a symplecticset struct (the
 ## help says so); symplecticset adds to it without a warning
