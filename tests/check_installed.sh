@@ -19,9 +19,14 @@
 # 4. In a new session: pkg load symplectic; pkg test symplectic (no
 #    failure, at least one test); lookfor symplectic (lists odeSE, odeSV,
 #    odeSPVI); where odeSPVI and __odeSPVI__ resolve.
-# 5. In a new session, with no display: demo odeSPVI (every example runs;
-#    figures invisible; demo's "Press <enter>" answered on stdin).
-# 6. Files: every .mex in the architecture directory (getarch () under
+# 5. In a new session, with no display and stdin from /dev/null: the
+#    demo of each function (odeSE, odeSV, odeSPVI, symplecticset,
+#    symdeval) runs and, when a graphics toolkit can print, writes its
+#    PNG.
+# 6. In a new session: tests/test_examples.m of the unpacked tarball on
+#    the installed package: every example of README.md, of the installed
+#    user guide and of the help texts runs.
+# 7. Files: every .mex in the architecture directory (getarch () under
 #    archprefix, as pkg list gives it), none under the package directory
 #    (the arch-independent tree), no object files anywhere; the user
 #    guide in the package's doc/, where the README says it is.
@@ -139,27 +144,54 @@ grep -q "^WHICH=$dir/odeSPVI.m$" "$logdir/test.log" \
   && grep -q "^WHICH=$archprefix/.*/__odeSPVI__.mex$" "$logdir/test.log" \
   || { grep "^WHICH" "$logdir/test.log"; fail "odeSPVI is not $dir/odeSPVI.m calling a .mex under $archprefix"; }
 
-# 5. demo odeSPVI (demo catches an example's error and prints
-# "odeSPVI example N: failed")
-echo "check-installed: demo odeSPVI"
-ndemo=$(grep -c "^%!demo" "$dir/odeSPVI.m")
-yes "" 2>/dev/null | head -n 20 > "$tmp/enter"
-chmod 644 "$tmp/enter"
+# 5. the demos, with no terminal and no display (demo catches an
+# example's error and prints "NAME example N: failed"; a second demo in
+# a file would make it prompt, which fails with stdin from /dev/null)
+demos="odeSE odeSV odeSPVI symplecticset symdeval"
+echo "check-installed: demo $demos (stdin /dev/null, no display)"
 run_octave "$logdir/demo.log" "
   pkg load $name;
-  set (0, 'defaultfigurevisible', 'off');
-  demo odeSPVI;
-  printf ('DEMOS DONE\n');" < "$tmp/enter"
-# (the header of each example after the first follows demo's prompt)
-nrun=$(grep -c "odeSPVI example [0-9]*:$" "$logdir/demo.log")
+  for f = strsplit ('$demos')
+    demo (f{1});
+  endfor
+  printf ('TOOLKITS=%d\nDEMOS DONE\n', numel (available_graphics_toolkits ()));" \
+  < /dev/null
+nrun=0
+for f in $demos; do
+  grep -q "^$f example 1:$" "$logdir/demo.log" || { show_log "$logdir/demo.log"; fail "demo $f did not run"; }
+  nrun=$((nrun + 1))
+done
 if ! grep -q "^DEMOS DONE" "$logdir/demo.log" \
-   || grep -q "odeSPVI example [0-9]*: failed" "$logdir/demo.log" \
-   || [ "$ndemo" -eq 0 ] || [ "$nrun" -ne "$ndemo" ]; then
+   || grep -q "example [0-9]*: failed" "$logdir/demo.log"; then
   show_log "$logdir/demo.log"
-  fail "demo odeSPVI ($nrun of $ndemo examples ran)"
+  fail "the demos ($demos)"
+fi
+npng=$(find "$home" -maxdepth 1 -name '*-demo.png' | wc -l)
+if [ "$(sed -n 's/^TOOLKITS=//p' "$logdir/demo.log")" != 0 ] && [ "$npng" -ne "$nrun" ]; then
+  show_log "$logdir/demo.log"
+  fail "$npng PNG files from $nrun demos with no display"
 fi
 
-# 6. the files
+# 6. the examples of README, the installed guide and the help texts, by
+# the source tree's test, on the installed package
+echo "check-installed: tests/test_examples.m on the installed package"
+mkdir "$tmp/src" && tar -C "$tmp/src" -xzf "$root/$tarball" && chmod -R a+rX "$tmp/src" \
+  || fail "unpacking $tarball"
+srcdir=$tmp/src/$name-$version
+run_octave "$logdir/examples.log" "
+  pkg load $name;
+  addpath ('$srcdir/tests');
+  [n, m] = test ('$srcdir/tests/test_examples.m', 'quiet', stdout);
+  printf ('EXAMPLES %d %d\n', n, m);"
+nex=$(sed -n 's/^EXAMPLES \([0-9]*\) \([0-9]*\)$/\1 \2/p' "$logdir/examples.log")
+set -- $nex
+if [ -z "$nex" ] || [ "$1" -ne "$2" ] || [ "$2" -eq 0 ]; then
+  show_log "$logdir/examples.log"
+  fail "tests/test_examples.m on the installed package: ${1:-no} of ${2:-no} passed"
+fi
+nexamples=$1
+
+# 7. the files
 nmex_arch=$(find "$archprefix" -name '*.mex' | wc -l)
 mex_indep=$(find "$dir" -name '*.mex')
 objs=$(find "$dir" "$archprefix" -name '*.o')
@@ -174,4 +206,4 @@ nsrc=$(tar -tzf "$root/$tarball" | grep -c "/src/__[A-Za-z0-9]*__\.c$")
   || fail "the .mex files are not all in the architecture directory"
 
 secs=$(($(date +%s) - start))
-echo "check-installed: passed: $tarball installed by $user (not root): pkg test $npass passed, 0 failed; demo odeSPVI $nrun examples; $nmex_arch .mex in the arch dir, none beside the m-files ($secs s)"
+echo "check-installed: passed: $tarball installed by $user (not root): pkg test $npass passed, 0 failed; $nrun demos headless ($npng PNG); test_examples $nexamples passed; $nmex_arch .mex in the arch dir, none beside the m-files ($secs s)"
