@@ -658,12 +658,14 @@
 
 %!test
 %! ## odeSE has no Method, nor CompensatedSummation: as the options of the
-%! ## other solvers, they are ignored, without a warning
+%! ## other solvers, they are ignored, with a warning naming odeSV
 %! o = symplecticset ("TimeStepSize", 0.1, "Separable", "on");
 %! s1 = odeSE (@kep, [0 1], y0k, o);
 %! lastwarn ("");
 %! evalc ("s2 = odeSE (@kep, [0 1], y0k, symplecticset (o, 'Method', 'yoshida4', 'CompensatedSummation', 'on'));");
-%! assert (lastwarn (), "");
+%! [msg, id] = lastwarn ();
+%! assert (id, "symplectic:ignored-option");
+%! assert (msg, "odeSE: option CompensatedSummation is used by odeSV only; ignored");
 %! assert (s2.y, s1.y);
 
 ## odeSPVI takes FCN as Hamilton's equations only: SecondOrder, which

@@ -365,7 +365,7 @@ function id = warning_id (msg)
     "is not supported and is ignored", "symplectic:unsupported-option"
     "is below 100\\*eps", "symplectic:tolerance"
     "unknown option", "symplectic:unknown-option"
-    "is ignored without StepControl|of adaptive steps are ignored", "symplectic:ignored-option"};
+    "is ignored without StepControl|for adaptive steps only and|is used by .* only; ignored", "symplectic:ignored-option"};
   id = "";
   for i = 1:rows (table)
     if (! isempty (regexp (msg, table{i,1}, "once")))

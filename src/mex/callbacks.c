@@ -218,8 +218,19 @@ call_fcn (symmex_ctx *c, double t, const double *y, int nout, mxArray **out,
 int
 symmex_cb_rhs (double t, const double *y, double *dy, void *user)
 {
+  symmex_ctx *c = user;
+  /* the first call at (t0, y0) after the probe of Separable: its value */
+  if (c->f0_kept && t == c->t0
+      && memcmp (y, c->y0, sizeof (double) * c->n) == 0)
+    {
+      memcpy (dy, c->f0, sizeof (double) * c->n);
+      c->f0_kept = 0;
+      c->probe_calls--;
+      c->probe_states--;
+      return 0;
+    }
   mxArray *out[1] = { NULL };
-  call_fcn (user, t, y, 1, out, dy);
+  call_fcn (c, t, y, 1, out, dy);
   return 0;
 }
 

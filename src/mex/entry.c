@@ -105,6 +105,7 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   symmex_parse_options (name, &a, &o);
   void *own = mxCalloc (1, m->own_size);
   m->parse (name, a.opts && ! mxIsEmpty (a.opts) ? a.opts : NULL, own);
+  symmex_check_others (m, a.opts && ! mxIsEmpty (a.opts) ? a.opts : NULL);
   const char *why = o.reversible ? m->asymmetric (own) : NULL;
   if (why)
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: StepControl \"reversible\" needs "
@@ -114,8 +115,10 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
                                  : *m->type;
   symmex_ensemble_check (name, &a, &o, nlhs);
   sym_system sys;
+  const int second = m->second_order && m->second_order (own);
   symmex_ctx *c = symmex_problem (name, &a, &o, m->needs_newton (own),
-                                  m->second_order && m->second_order (own),
+                                  second, m->sep_broken
+                                  && ! m->needs_newton (own) && ! second,
                                   nlhs, &sys);
   if (m->needs_newton (own) && m->take_sparse && m->take_sparse (own, 0)
       && symmex_sparse_source (c, &a))

@@ -193,14 +193,17 @@ symmex_report (const symmex_method *m, const void *own,
       mexErrMsgIdAndTxt ("symplectic:internal", "%s: internal failure (%s)",
                          name, sym_status_name (status));
     }
-  /* Separable on, but f found not separable by the steps themselves */
-  if (st->sep_broken && m->sep_broken)
+  /* Separable on, but f found not separable at (t0, y0) by the probe
+     (symmex_problem), or by the steps themselves */
+  if ((c->sep_probe_broken || st->sep_broken) && m->sep_broken)
     mexWarnMsgIdAndTxt ("symplectic:not-separable", "%s: Separable is on, "
                         "but FCN is not of a separable H = T(p) + V(q) "
                         "without p in the forcing: %s at t = %.15g; the "
                         "explicit steps are then not the method (of lower "
                         "order, not symplectic): set Separable off", name,
-                        m->sep_broken, st->sep_broken_t);
+                        c->sep_probe_broken ? SYMMEX_SEP_PROBE
+                        : m->sep_broken, c->sep_probe_broken
+                        ? a->tspan[0] : st->sep_broken_t);
 }
 
 static const char *

@@ -534,18 +534,40 @@ known_in (const char *name, const char *const *list, const char **near,
   return 0;
 }
 
-/* A field of OPTS that no solver knows (a typo in a plain struct: odeset
-   warns for its own) is said, with the nearest known name */
+/* The fields of a struct symplecticset made that it warned about: its
+   result holds odeset's fields in odeset's order, then the names neither
+   knows (warned about there), then the package's, TimeStepSize first; a
+   field added later comes after those.  Returns the index of its
+   TimeStepSize (the names from 22 to there were warned about), or 0. */
+static int
+warned_upto (const mxArray *opts)
+{
+  const int nf = mxGetNumberOfFields (opts);
+  int k = 0;
+  for (; odeset_names[k]; k++)
+    if (k >= nf || strcmp (mxGetFieldNameByNumber (opts, k),
+                           odeset_names[k]) != 0)
+      return 0;
+  for (; k < nf; k++)
+    if (strcmp (mxGetFieldNameByNumber (opts, k), "TimeStepSize") == 0)
+      return k;
+  return 0;
+}
+
+/* A field of OPTS that no solver knows (a typo in a plain struct, or one
+   added to a struct of odeset or symplecticset) is said once, with the
+   nearest known name; those symplecticset said already are not */
 static void
 check_names (const char *solver, const mxArray *opts)
 {
   static const char *const alias[] = { "Explicit", NULL };
   const int nf = opts && mxIsStruct (opts) ? mxGetNumberOfFields (opts) : 0;
+  const int warned = nf ? warned_upto (opts) : 0;
   for (int i = 0; i < nf; i++)
     {
       const char *name = mxGetFieldNameByNumber (opts, i);
       const mxArray *v = mxGetFieldByNumber (opts, 0, i);
-      if (! v || mxIsEmpty (v))
+      if (! v || mxIsEmpty (v) || i < warned)
         continue;
       const char *near = NULL;
       int dist = 64, known = known_in (name, odeset_names, &near, &dist)
@@ -575,6 +597,7 @@ check_fixed (const char *solver, const mxArray *opts, const symmex_opts *o)
   static const char *const adaptive[] = { "RelTol", "AbsTol", "NormControl",
                                           "InitialStep", "MaxStep", NULL };
   char list[128] = "";
+  int nlist = 0;
   if (o->reversible && symmex_fixed (o))
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: StepControl \"reversible\" "
                        "chooses the steps; leave out TimeStepSize and "
@@ -586,14 +609,96 @@ check_fixed (const char *solver, const mxArray *opts, const symmex_opts *o)
                         solver);
   if (! symmex_fixed (o))
     return;
+  const char *given[8];
   for (int k = 0; adaptive[k]; k++)
     if (symmex_field (solver, opts, adaptive[k]))
-      snprintf (list + strlen (list), sizeof list - strlen (list), "%s%s",
-                list[0] ? ", " : "", adaptive[k]);
-  if (list[0])
-    mexWarnMsgIdAndTxt ("symplectic:ignored-option", "%s: %s of adaptive "
-                        "steps are ignored with a fixed step (TimeStepSize "
-                        "or TimeStepNumber)", solver, list);
+      given[nlist++] = adaptive[k];
+  for (int k = 0; k < nlist; k++)
+    snprintf (list + strlen (list), sizeof list - strlen (list), "%s%s",
+              k == 0 ? "" : k + 1 < nlist ? ", " : " and ", given[k]);
+  if (nlist)
+    mexWarnMsgIdAndTxt ("symplectic:ignored-option", "%s: %s %s for "
+                        "adaptive steps only and %s ignored with a fixed "
+                        "step (TimeStepSize or TimeStepNumber)", solver,
+                        list, nlist > 1 ? "are" : "is",
+                        nlist > 1 ? "are" : "is");
+}
+
+/* name is one of method k's own options (Explicit: where Separable is) */
+static int
+own_option (const symmex_method *k, const char *name)
+{
+  for (int i = 0; k->option_names[i]; i++)
+    if (name_eq (name, k->option_names[i])
+        || (name_eq (name, "Explicit")
+            && name_eq (k->option_names[i], "Separable")))
+      return 1;
+  return 0;
+}
+
+/* an on/off option left off: it asks for nothing any solver does not do */
+static int
+is_off (const mxArray *v)
+{
+  char buf[8];
+  if (mxIsChar (v))
+    return mxGetM (v) == 1 && mxGetString (v, buf, sizeof buf) == 0
+           && (name_eq (buf, "off") || name_eq (buf, "no"));
+  return (mxIsLogical (v) || is_real_numeric (v))
+         && mxGetNumberOfElements (v) == 1
+         && (mxIsLogical (v) ? ! mxGetLogicals (v)[0] : elem (v, 0) == 0);
+}
+
+void
+symmex_check_others (const symmex_method *m, const mxArray *opts)
+{
+  const int nf = opts && mxIsStruct (opts) ? mxGetNumberOfFields (opts) : 0;
+  if (! nf)
+    return;
+  /* first the values, as the solvers that use them check them (a value
+     no solver takes is an error in every one): each other method parses
+     the fields that are its own and not m's */
+  for (int k = 0; symmex_methods[k]; k++)
+    {
+      const symmex_method *other = symmex_methods[k];
+      if (other == m)
+        continue;
+      mxArray *sub = mxCreateStructMatrix (1, 1, 0, NULL);
+      for (int i = 0; i < nf; i++)
+        {
+          const char *name = mxGetFieldNameByNumber (opts, i);
+          const mxArray *v = mxGetFieldByNumber (opts, 0, i);
+          if (v && ! mxIsEmpty (v) && own_option (other, name)
+              && ! own_option (m, name))
+            mxSetFieldByNumber (sub, 0, mxAddField (sub, name),
+                                mxDuplicateArray (v));
+        }
+      if (mxGetNumberOfFields (sub) > 0)
+        {
+          void *scratch = mxCalloc (1, other->own_size);
+          other->parse (m->name, sub, scratch);
+          mxFree (scratch);
+        }
+      mxDestroyArray (sub);
+    }
+  /* then each such field once, with the solvers that use it */
+  for (int i = 0; i < nf; i++)
+    {
+      const char *name = mxGetFieldNameByNumber (opts, i);
+      const mxArray *v = mxGetFieldByNumber (opts, 0, i);
+      if (! v || mxIsEmpty (v) || own_option (m, name) || is_off (v))
+        continue;
+      char users[64] = "";
+      int nu = 0;
+      for (int k = 0; symmex_methods[k]; k++)
+        if (symmex_methods[k] != m && own_option (symmex_methods[k], name))
+          snprintf (users + strlen (users), sizeof users - strlen (users),
+                    "%s%s", nu++ ? " and " : "", symmex_methods[k]->name);
+      if (nu)
+        mexWarnMsgIdAndTxt ("symplectic:ignored-option", "%s: option %s is "
+                            "used by %s only; ignored", m->name, name,
+                            users);
+    }
 }
 
 void

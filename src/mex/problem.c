@@ -17,13 +17,17 @@ col (int n)
   return mxCreateDoubleMatrix (n, 1, mxREAL);
 }
 
-/* FCN takes (t, y) and the parameters given after Y0 (or OPTS): a
-   function that declares fewer arguments is told at once, not by its own
-   error at the first call */
+/* A user's function takes (t, y) (OutputFcn: (t, y, flag)) and the
+   parameters given after Y0 (or OPTS): one that declares fewer arguments
+   (nargin, where Octave knows it) is told at once, naming the option,
+   not by its own error at the first call */
 static void
-check_nargin (const symmex_ctx *c, const mxArray *fcn)
+check_nargin (const symmex_ctx *c, const mxArray *f, const char *what,
+              const char *form)
 {
-  mxArray *in[1] = { (mxArray *) fcn }, *out[1] = { NULL };
+  if (! f)
+    return;
+  mxArray *in[1] = { (mxArray *) f }, *out[1] = { NULL };
   mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "nargin");
   if (ex)
     {
@@ -32,18 +36,93 @@ check_nargin (const symmex_ctx *c, const mxArray *fcn)
     }
   const double k = mxIsNumeric (out[0]) ? mxGetScalar (out[0]) : -1;
   mxDestroyArray (out[0]);
-  if (k < 0 || k >= 2 + c->nextra)
+  int fixed = 1;
+  for (const char *p = form; *p; p++)
+    fixed += *p == ',';
+  if (k < 0 || k >= fixed + c->nextra)
     return;
-  char ps[64] = ", p1";
-  if (c->nextra > 1)
+  char ps[64] = "";
+  if (c->nextra == 1)
+    snprintf (ps, sizeof ps, ", p1");
+  else if (c->nextra > 1)
     snprintf (ps, sizeof ps, ", p1, %sp%d", c->nextra > 2 ? "..., " : "",
               c->nextra);
-  char follow[64] = "a parameter follows";
-  if (c->nextra > 1)
-    snprintf (follow, sizeof follow, "%d parameters follow", c->nextra);
-  mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: FCN takes %g argument%s, but is "
-                     "called as FCN (t, y%s): %s Y0 or OPTS", c->solver, k,
-                     k == 1 ? "" : "s", ps, follow);
+  char follow[64];
+  snprintf (follow, sizeof follow, "; it must accept (%s)", form);
+  if (c->nextra == 1)
+    snprintf (follow, sizeof follow, ": a parameter follows Y0 or OPTS");
+  else if (c->nextra > 1)
+    snprintf (follow, sizeof follow, ": %d parameters follow Y0 or OPTS",
+              c->nextra);
+  mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s takes %g argument%s, but is "
+                     "called as %s (%s%s)%s", c->solver, what, k,
+                     k == 1 ? "" : "s", what, form, ps, follow);
+}
+
+/* SecondOrder: FCN (t, q) with the d positions alone.  An FCN written for
+   y = [q; p] indexes past q at its first call: that error is said as
+   the solver's, with the original message, rather than Octave's alone.
+   The call goes through cellfun's ErrorHandler, which keeps the error's
+   message (a trapped call of a MEX function does not); any other error
+   of FCN is raised again as it came. */
+static void
+first_call_second_order (symmex_ctx *c, mxArray **out)
+{
+  mxArray *in[16], *cells[16];
+  const int nin = c->nargs + 5;
+  if (nin > 16)
+    {
+      symmex_call (1, out, c->nargs, c->args, c->fname);
+      return;
+    }
+  mxArray *h = NULL, *hs = mxCreateString ("@(e, varargin) struct "
+                                           "(\"symplectic_error__\", e)");
+  mexCallMATLAB (1, &h, 1, &hs, "str2func");
+  mxDestroyArray (hs);
+  in[0] = (mxArray *) c->args[0];
+  for (int i = 1; i < c->nargs; i++)
+    {
+      cells[i] = mxCreateCellMatrix (1, 1);
+      mxSetCell (cells[i], 0, mxDuplicateArray (c->args[i]));
+      in[i] = cells[i];
+    }
+  in[c->nargs] = mxCreateString ("ErrorHandler");
+  in[c->nargs + 1] = h;
+  in[c->nargs + 2] = mxCreateString ("UniformOutput");
+  in[c->nargs + 3] = mxCreateLogicalScalar (0);
+  mxArray *res = NULL;
+  mexCallMATLAB (1, &res, nin - 1, in, "cellfun");
+  for (int i = 1; i < c->nargs; i++)
+    mxDestroyArray (cells[i]);
+  for (int i = c->nargs; i < nin - 1; i++)
+    mxDestroyArray (in[i]);
+  mxArray *v = mxGetCell (res, 0);
+  const mxArray *e = v && mxIsStruct (v)
+                     ? mxGetField (v, 0, "symplectic_error__") : NULL;
+  if (! e)
+    {
+      out[0] = v ? mxDuplicateArray (v) : NULL;
+      mxDestroyArray (res);
+      return;
+    }
+  const mxArray *mm = mxGetField (e, 0, "message");
+  const mxArray *mi = mxGetField (e, 0, "identifier");
+  char *msg = mm && mxIsChar (mm) ? mxArrayToString (mm) : NULL;
+  char *id = mi && mxIsChar (mi) ? mxArrayToString (mi) : NULL;
+  if (id && strcmp (id, "Octave:index-out-of-bounds") == 0)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: with SecondOrder on, FCN is "
+                       "called as FCN (t, q), q the first half of Y0 (%d "
+                       "of its %d elements), and must return the "
+                       "acceleration a(t, q) of as many; calling it at "
+                       "t = %.15g gave: %s", c->solver, c->d, c->n,
+                       mxGetScalar (c->args[1]), msg ? msg : "");
+  /* the user's own error, as it came */
+  mxArray *st = mxCreateStructMatrix (1, 1, 0, NULL);
+  mxSetFieldByNumber (st, 0, mxAddField (st, "message"),
+                      mxCreateString (msg ? msg : ""));
+  mxSetFieldByNumber (st, 0, mxAddField (st, "identifier"),
+                      mxCreateString (id ? id : ""));
+  mexCallMATLAB (0, NULL, 1, &st, "rethrow");
 }
 
 /* Vectorized: FCN (t, Y) must give, in column j, FCN (t, Y(:,j)).
@@ -99,10 +178,11 @@ check_vectorized (symmex_ctx *c, const symmex_args *a, const double *f0)
                        a->tspan[0], c->nf);
 }
 
-/* FCN at (t0, y0): its size and values, and (probe_hess) whether it gives
-   the Hessian as a second output; returns that */
+/* FCN at (t0, y0): its size and values (kept in c->f0 when keep_f0), and
+   (probe_hess) whether it gives the Hessian as a second output; returns
+   that */
 static int
-probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
+probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess, int keep_f0)
 {
   const int n = c->n;
   mxArray *out[2] = { NULL, NULL };
@@ -119,7 +199,9 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
       else if (out[1] && ! mxIsEmpty (out[1]))
         have2 = 1;
     }
-  if (! out[0])
+  if (! out[0] && c->second_order)
+    first_call_second_order (c, out);
+  else if (! out[0])
     symmex_call (1, out, c->nargs, c->args, c->fname);
   c->probe_calls = c->probe_states = 1;
   const double *v = symmex_checked (c, &out[0], c->nf, "FCN", 0,
@@ -140,7 +222,10 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
                          a->tspan[0]);
   if (c->o->vectorized)
     check_vectorized (c, a, f0);
-  mxFree (f0);
+  if (keep_f0)
+    c->f0 = f0;    /* (probe_separable's) */
+  else
+    mxFree (f0);
   /* a sparse Hessian of the right size and type is not made full here
      (at large d it could not be) */
   c->fcn2_sparse = have2 && mxIsSparse (out[1]) && mxIsDouble (out[1])
@@ -150,6 +235,38 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess)
                     ? (size_t) n * n : (size_t) -1, "FCN (second output)",
                     0, a->tspan[0], SYMMEX_HESS_EXPECT, n, n, n * n);
   return have2;
+}
+
+/* Separable: f_p = -dH/dq (with the forcing) must not change with p.
+   odeSE's steps see it (two calls at the same t and q); odeSV's calls
+   are at the same p, so FCN is called once more here, at (t0, q0) with
+   another p.  That call stands in for the run's first call at (t0, y0),
+   served from the probe's value (symmex_cb_rhs), so that the calls are
+   as many as without it.  Skipped where f is not finite there. */
+static void
+probe_separable (symmex_ctx *c, const symmex_args *a)
+{
+  const int n = c->n, d = c->d;
+  double *y1 = mxMalloc (sizeof (double) * 2 * n), *f1 = y1 + n;
+  memcpy (y1, a->y0, sizeof (double) * n);
+  for (int i = d; i < n; i++)
+    y1[i] += 1e-3 * (fabs (a->y0[i]) + 1.0) * (i % 2 ? -1 : 1);
+  symmex_cb_rhs (a->tspan[0], y1, f1, c);
+  c->probe_calls++;
+  c->probe_states++;
+  double big = 0.0, dif = 0.0;
+  for (int i = d; i < n; i++)
+    {
+      if (! isfinite (f1[i]))
+        break;
+      big = fmax (big, fmax (fabs (c->f0[i]), fabs (f1[i])));
+      dif = fmax (dif, fabs (f1[i] - c->f0[i]));
+    }
+  c->sep_probe_broken = dif > SYM_SEP_TOL * big;
+  c->f0_kept = 1;
+  c->t0 = a->tspan[0];
+  c->y0 = a->y0;
+  mxFree (y1);
 }
 
 /* The source of Newton's matrices, in the order of precedence: the
@@ -217,7 +334,8 @@ count_events (symmex_ctx *c, const symmex_args *a, const mxArray *events)
 
 symmex_ctx *
 symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
-                int need_jac, int second_order, int nlhs, sym_system *sys)
+                int need_jac, int second_order, int separable, int nlhs,
+                sym_system *sys)
 {
   const int n = a->n;
   symmex_ctx *c = mxCalloc (1, sizeof (symmex_ctx));
@@ -239,11 +357,22 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
     c->args[3 + i] = (mxArray *) c->extra[i];
   memcpy (mxGetPr (c->args[2]), a->y0, sizeof (double) * c->nf);
   symmex_direct_name (a->fcn, c->fname, sizeof c->fname);
-  if (c->nextra > 0)
-    check_nargin (c, a->fcn);
+  check_nargin (c, a->fcn, "FCN", second_order ? "t, q" : "t, y");
+  check_nargin (c, o->jacobian && symmex_is_function (o->jacobian)
+                ? o->jacobian : NULL, "Jacobian", "t, y");
+  check_nargin (c, o->hessfcn, "HamiltonianHessFcn", "t, y");
+  check_nargin (c, o->events, "Events", "t, y");
+  check_nargin (c, o->outputfcn, "OutputFcn", "t, y, flag");
+  check_nargin (c, o->reversible ? o->densityfcn : NULL, "StepDensityFcn",
+                "t, y");
+  check_nargin (c, o->hamiltonian, "Hamiltonian", "t, y");
 
   /* the Hessian as FCN's second output only matters to Newton */
-  int have2 = probe_fcn (c, a, need_jac && ! o->jacobian && ! o->hessfcn);
+  separable = separable && c->members == 1;
+  int have2 = probe_fcn (c, a, need_jac && ! o->jacobian && ! o->hessfcn,
+                         separable);
+  if (separable)
+    probe_separable (c, a);
   c->jac_source = JAC_NONE;
   if (need_jac)
     jacobian_source (c, o, have2);

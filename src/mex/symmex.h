@@ -133,6 +133,11 @@ typedef struct symmex_opts_s {
    n = 2d components, then check the steps it asks for against TSPAN */
 void symmex_parse_options (const char *solver, const symmex_args *a,
                            symmex_opts *o);
+/* The fields of OPTS that are other solvers' options (m's own parsed):
+   their values checked as those solvers check them (errors name m), then
+   each warned about once as ignored (symplectic:ignored-option), unless
+   it is an on/off option left off */
+void symmex_check_others (const symmex_method *m, const mxArray *opts);
 /* fixed steps (TimeStepSize or TimeStepNumber) */
 int symmex_fixed (const symmex_opts *o);
 
@@ -189,6 +194,13 @@ typedef struct symmex_ctx_s {
   long probe_calls, probe_states;  /* calls of FCN before the run */
   long probe_jac;              /* calls of the Jacobian's source before it */
   int fcn2_sparse;             /* the probe's second output was sparse */
+  /* Separable: f_p at (t0, q0) changed with p (the probe); FCN at
+     (t0, y0) kept for the run's first call of it there, which the probe
+     of f_p then stands in for (f0_kept: not yet used) */
+  int sep_probe_broken, f0_kept;
+#define SYMMEX_SEP_PROBE "dH/dq changed with p at the same q"
+  double *f0, t0;
+  const double *y0;
   int sparse;                  /* Df goes to the core sparse */
   int oom;                     /* an output buffer could not grow */
   const char *nonfinite_what;  /* which function last returned NaN/Inf */
@@ -207,12 +219,14 @@ typedef struct symmex_ctx_s {
 } symmex_ctx;
 
 /* The context of a run: FCN probed at (t0, y0) (its size and values,
-   FCN (t, q) returning a when second_order, and, when need_jac, whether it gives the Hessian as a second output),
+   FCN (t, q) returning a when second_order, and, when need_jac, whether it
+   gives the Hessian as a second output; when separable, whether f_p
+   changes with p there),
    the source of Newton's matrix, the number of events, OutputFcn's
    "init" (odeplot when nargout is 0); the core's system into sys */
 symmex_ctx *symmex_problem (const char *solver, const symmex_args *a,
                             symmex_opts *o, int need_jac, int second_order,
-                            int nlhs, sym_system *sys);
+                            int separable, int nlhs, sym_system *sys);
 
 /* Whether Df comes sparse: a sparse Jacobian matrix, a sparse value of
    the Jacobian's function or the Hessian's at (t0, y0) (that call is

@@ -32,8 +32,10 @@ sv_parse (const char *solver, const mxArray *opts, void *own)
           for (int k = 0; sym_splittings[k].name; k++)
             snprintf (list + strlen (list), sizeof list - strlen (list),
                       "%s\"%s\"", k ? ", " : "", sym_splittings[k].name);
-          mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Method must be one of %s",
-                             solver, list);
+          char got[64];
+          mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Method must be one of %s; "
+                             "got %s", solver, list,
+                             symmex_describe_word (v, got, sizeof got));
         }
     }
   const mxArray *c = symmex_field (solver, opts, "CompensatedSummation");
