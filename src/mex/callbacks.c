@@ -218,6 +218,8 @@ call_fcn (symmex_ctx *c, double t, const double *y, int nout, mxArray **out,
 int
 symmex_cb_rhs (double t, const double *y, double *dy, void *user)
 {
+  if (((symmex_ctx *) user)->compiled)
+    return symmex_compiled_rhs (t, y, dy, user);
   mxArray *out[1] = { NULL };
   call_fcn (user, t, y, 1, out, dy);
   return 0;
@@ -229,6 +231,8 @@ symmex_cb_rhs_batch (int k, const double *t, const double *y, double *dy,
               void *user)
 {
   symmex_ctx *c = user;
+  if (c->compiled)
+    return symmex_compiled_rhs_batch (k, t, y, dy, user);
   /* argument arrays kept for each k up to SYMMEX_MAXBATCH, and for the last
      larger k (finite differences batch 2d Nodes states) */
   int slot = k <= SYMMEX_MAXBATCH ? k : 0;
