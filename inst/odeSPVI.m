@@ -97,6 +97,10 @@ function varargout = odeSPVI (varargin)
   ## odeplot, as ode45 does.
   ## Parallel other than 1 shares an ensemble's members out to other
   ## processes (private/__ensemble_parallel__.m).
+  ## a compiled FCN (symcompile) goes to the gateway as its struct
+  if (nargin >= 1 && isa (varargin{1}, "symfcn"))
+    varargin{1} = __symfcn_gateway__ (varargin{1});
+  endif
   if (nargin >= 4 && isstruct (varargin{4})
       && __ensemble_parallel__ ("odeSPVI", varargin{4}))
     [varargout{1:nargout}] = __ensemble_parallel__ ("odeSPVI", @__odeSPVI__,

@@ -125,7 +125,7 @@ symmex_read_args (const char *name, int nlhs, int nrhs,
     mexErrMsgIdAndTxt ("Octave:invalid-fun-call",
                        "%s: at most 5 outputs [T, Y, TE, YE, IE]", name);
   a->fcn = prhs[0];
-  if (! symmex_is_function (a->fcn))
+  if (! symmex_is_function (a->fcn) && ! symmex_compiled_arg (a->fcn))
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: FCN must be a function handle or "
                        "the name of a function, got %s", name,
                        symmex_describe_fn (a->fcn, buf, sizeof buf));

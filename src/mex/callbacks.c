@@ -219,6 +219,8 @@ int
 symmex_cb_rhs (double t, const double *y, double *dy, void *user)
 {
   symmex_ctx *c = user;
+  if (c->compiled)
+    return symmex_compiled_rhs (t, y, dy, user);
   /* the first call at (t0, y0) after the probe of Separable: its value */
   if (c->f0_kept && t == c->t0
       && memcmp (y, c->y0, sizeof (double) * c->n) == 0)
@@ -240,6 +242,8 @@ symmex_cb_rhs_batch (int k, const double *t, const double *y, double *dy,
               void *user)
 {
   symmex_ctx *c = user;
+  if (c->compiled)
+    return symmex_compiled_rhs_batch (k, t, y, dy, user);
   /* argument arrays kept for each k up to SYMMEX_MAXBATCH, and for the last
      larger k (finite differences batch 2d Nodes states) */
   int slot = k <= SYMMEX_MAXBATCH ? k : 0;

@@ -216,6 +216,7 @@ jac_source_name (int s)
     case JAC_HESSFCN: return "HamiltonianHessFcn";
     case JAC_FCN2: return "second output of FCN (Hessian)";
     case JAC_FD: return "finite differences of FCN";
+    case JAC_COMPILED: return "compiled Hessian of FCN";
     default: return "none (explicit steps)";
     }
 }

@@ -356,8 +356,12 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
   for (int i = 0; i < c->nextra; i++)
     c->args[3 + i] = (mxArray *) c->extra[i];
   memcpy (mxGetPr (c->args[2]), a->y0, sizeof (double) * c->nf);
-  symmex_direct_name (a->fcn, c->fname, sizeof c->fname);
-  check_nargin (c, a->fcn, "FCN", second_order ? "t, q" : "t, y");
+  int compiled = symmex_compiled_arg (a->fcn);
+  if (! compiled)
+    {
+      symmex_direct_name (a->fcn, c->fname, sizeof c->fname);
+      check_nargin (c, a->fcn, "FCN", second_order ? "t, q" : "t, y");
+    }
   check_nargin (c, o->jacobian && symmex_is_function (o->jacobian)
                 ? o->jacobian : NULL, "Jacobian", "t, y");
   check_nargin (c, o->hessfcn, "HamiltonianHessFcn", "t, y");
@@ -367,15 +371,20 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
                 "t, y");
   check_nargin (c, o->hamiltonian, "Hamiltonian", "t, y");
 
-  /* the Hessian as FCN's second output only matters to Newton */
-  separable = separable && c->members == 1;
-  int have2 = probe_fcn (c, a, need_jac && ! o->jacobian && ! o->hessfcn,
-                         separable);
-  if (separable)
-    probe_separable (c, a);
   c->jac_source = JAC_NONE;
-  if (need_jac)
-    jacobian_source (c, o, have2);
+  if (compiled)
+    symmex_compiled_problem (c, a, o, need_jac);
+  else
+    {
+      /* the Hessian as FCN's second output only matters to Newton */
+      separable = separable && c->members == 1;
+      int have2 = probe_fcn (c, a, need_jac && ! o->jacobian
+                             && ! o->hessfcn, separable);
+      if (separable)
+        probe_separable (c, a);
+      if (need_jac)
+        jacobian_source (c, o, have2);
+    }
   if (o->events)
     count_events (c, a, o->events);
   if (o->densityfcn && o->reversible)
@@ -413,6 +422,8 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
   sys->jp_rowind = o->jp_rowind;
   sys->jp_color = o->jp_color;
   sys->jp_ncolors = o->jp_ncolors;
+  if (c->compiled)
+    symmex_compiled_system (c, sys);
   return c;
 }
 
@@ -437,6 +448,8 @@ symmex_sparse_source (symmex_ctx *c, const symmex_args *a)
         mxDestroyArray (v);
         return sp;
       }
+    case JAC_COMPILED:
+      return symmex_compiled_sparse_source (c);
     default:
       return 0;
     }
@@ -452,4 +465,5 @@ symmex_use_sparse (symmex_ctx *c, sym_system *sys)
   sys->jac_csc = c->jac_source == JAC_FD ? NULL : symmex_cb_jac_csc;
   sys->rhs_jac_csc = c->jac_source == JAC_FCN2 ? symmex_cb_rhs_jac_csc
                      : NULL;
+  symmex_compiled_use_sparse (c, sys);
 }

@@ -93,7 +93,8 @@ void symmex_read_args (const char *solver, int nlhs, int nrhs,
                        const mxArray *prhs[], symmex_args *a);
 
 /* ------------------------------------------------------------ options */
-enum { JAC_NONE = 0, JAC_FD, JAC_MATRIX, JAC_FCN, JAC_HESSFCN, JAC_FCN2 };
+enum { JAC_NONE = 0, JAC_FD, JAC_MATRIX, JAC_FCN, JAC_HESSFCN, JAC_FCN2,
+       JAC_COMPILED };
 
 /* The options common to the solvers (odeset's fields and the package's
    common ones) */
@@ -216,6 +217,8 @@ typedef struct symmex_ctx_s {
   double density, density_t;
   /* the Hamiltonian at the rows, its largest relative change */
   double *hbuf, max_dh;
+  /* FCN is compiled (symcompile): its functions, or NULL */
+  struct symmex_compiled_s *compiled;
 } symmex_ctx;
 
 /* The context of a run: FCN probed at (t0, y0) (its size and values,
@@ -277,6 +280,40 @@ mxArray *symmex_to_double (const mxArray *a);
    numeric, logical or char value); the replaced array is destroyed. */
 mxArray *symmex_take_full (mxArray **pa);
 mxArray *symmex_take_double (mxArray **pa);
+
+/* compiled.c: a compiled FCN (symcompile), loaded from its shared
+   object; the front ends pass it as a struct with the field
+   symplectic_compiled (the object's path) */
+typedef struct symmex_compiled_s symmex_compiled;
+int symmex_compiled_arg (const mxArray *fcn);
+void *symmex_compiled_dlopen (const char *path, const char **why);
+/* its functions (errors name who) */
+symmex_compiled *symmex_compiled_open (const char *who, const mxArray *fcn);
+/* In symmex_problem: the library, PAR1 checked, f probed at (t0, y0),
+   the source of Newton's matrices (its Hessian unless the options give
+   one), JPattern from the Hessian's pattern */
+void symmex_compiled_problem (symmex_ctx *c, const symmex_args *a,
+                              symmex_opts *o, int need_jac);
+/* its functions as the core's callbacks */
+void symmex_compiled_system (symmex_ctx *c, sym_system *sys);
+int symmex_compiled_sparse_source (const symmex_ctx *c);
+void symmex_compiled_use_sparse (symmex_ctx *c, sym_system *sys);
+int symmex_compiled_rhs (double t, const double *y, double *dy, void *user);
+int symmex_compiled_rhs_batch (int k, const double *t, const double *y,
+                               double *dy, void *user);
+int symmex_compiled_sparse (const symmex_compiled *k);
+/* for the Octave calls (__symcompiled__): what 0 f, 1 the acceleration,
+   2 H (at m columns of y), 3 the Hessian's values (one state); -100
+   when the library has no such function */
+int symmex_compiled_eval (symmex_compiled *k, int what, int m,
+                          const double *t, const double *y,
+                          const double *par, double *out);
+void symmex_compiled_pattern (const symmex_compiled *k, int *nnz,
+                              const int **colptr, const int **rowind);
+int symmex_compiled_dim (const symmex_compiled *k);
+int symmex_compiled_npar (const symmex_compiled *k);
+/* what 0 batch, 1 acceleration, 2 energy, 3 Hessian */
+int symmex_compiled_has (const symmex_compiled *k, int what);
 
 /* ------------------------------------------------------------ outputs */
 /* the core's output and event sinks (user: the symmex_ctx) */
