@@ -63,6 +63,7 @@ typedef struct {
   double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
   double *fqa;           /* d: f_q(t_k, q_k, p_{k+1/2}) */
   double *ym;            /* n: the estimate's midpoint at a fresh start */
+  int position;          /* drift-kick-drift (explicit steps only) */
   /* the step being solved (for the Newton callbacks) */
   sym_eval *ev;
   double tk, hk;
@@ -126,45 +127,27 @@ sv_alloc (int dim, const sym_method_opts *opts, int *status)
   int dummy;
   if (! status)
     status = &dummy;
-  sv_state *s = sym_onestep_new (dim, 2, sizeof (sv_state), opts, status);
+  const sym_onestep_opts *own = opts ? opts->own : NULL;
+  /* the position form is explicit only */
+  if (own && own->position && ! own->separable && ! own->second_order)
+    {
+      *status = SYM_EBADINPUT;
+      return NULL;
+    }
+  /* records with aux (2d); own: x, scale, rv, fqa (d each), ym (n); two
+     implicit unknowns */
+  double *w;
+  sv_state *s = sym_onestep_alloc (dim, 2, sizeof (sv_state), 2, 2 * dim,
+                                   6 * (size_t) dim, opts, status, &w);
   if (! s)
     return NULL;
-  const int d = dim, n = 2 * d;
-  /* records (aux: 2d), f cache, and x, scale, rv, fqa: 4d, ym: n; the
-     separable step is explicit: no Df and no Newton state (O(d^2)) */
-  const int implicit = ! s->o.separable;
-  size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d, implicit && ! s->o.sparse)
-               + 4 * (size_t) d + (size_t) n
-               + (implicit ? 2 * sym_pred_len (d) : 0);
-  s->o.block = sym_calloc (len, sizeof (double));
-  if (! s->o.block
-      || (implicit && sym_onestep_implicit (&s->o, 2, d, opts)))
-    {
-      sym_onestep_free (s);
-      *status = SYM_ENOMEM;
-      return NULL;
-    }
-  double *w = s->o.block;
-  sym_recs_place (&s->o.r, n, 2 * d, w);
-  w += sym_recs_len (n, 2 * d);
-  if (sym_onestep_fcache (&s->o, implicit, w))
-    {
-      sym_onestep_free (s);
-      *status = SYM_ENOMEM;
-      return NULL;
-    }
-  w += sym_fcache_len (d, implicit && ! s->o.sparse);
+  const int d = dim;
+  s->position = own && own->position;
   s->x = w; w += d;
   s->scale = w; w += d;
   s->rv = w; w += d;
   s->fqa = w; w += d;
-  s->ym = w; w += n;
-  if (implicit)
-    {
-      sym_pred_place (&s->o.pr[0], d, w);
-      sym_pred_place (&s->o.pr[1], d, w + sym_pred_len (d));
-    }
-  *status = SYM_SUCCESS;
+  s->ym = w;
   return s;
 }
 
