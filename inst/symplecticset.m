@@ -62,7 +62,12 @@
 ## @code{odeSV}: @qcode{"on"} sums the updates of explicit (fixed or
 ## reversible) steps with compensation, which keeps the round-off of the
 ## energy of very long runs near that of a single step.  Default
-## @qcode{"off"}.
+## @qcode{"on"} for the explicit steps of a @code{Method} other than
+## @qcode{"verlet"}, else @qcode{"off"}.
+## @item VerletForm
+## @code{odeSV}: the Verlet step of the method and of its compositions,
+## @qcode{"velocity"} (kick-drift-kick, the default) or
+## @qcode{"position"} (drift-kick-drift; explicit steps only).
 ## @item StepControl
 ## Adaptive steps: @qcode{"standard"} (error estimates, as
 ## @code{ode45}) or @qcode{"reversible"} (a time-symmetric step density
@@ -162,6 +167,7 @@ function opts = symplecticset (varargin)
                        "Nodes", "P_DoFs", "PolynomialDegree", ...
                        "HamiltonianHessFcn", "Separable", "Explicit", ...
                        "SecondOrder", "Method", "CompensatedSummation", ...
+                       "VerletForm", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
                        "NewtonSystem", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
                        "StepDensityFcn", "Ensemble", "Parallel"};
@@ -179,7 +185,8 @@ function opts = symplecticset (varargin)
     printf ("          Separable:  {[\"off\"], \"on\"}\n");
     printf ("        SecondOrder:  {[\"off\"], \"on\"}\n");
     printf ("             Method:  string, [\"verlet\"] (odeSV)\n");
-    printf ("CompensatedSummation: {[\"off\"], \"on\"}\n");
+    printf ("CompensatedSummation: {\"off\", \"on\"}, [on for Method's explicit steps]\n");
+    printf ("         VerletForm:  {[\"velocity\"], \"position\"} (odeSV)\n");
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");
     printf ("       NewtonMatrix:  {[\"auto\"], \"kept\", \"new\"}\n");
