@@ -16,7 +16,8 @@
    (gamma_1/2, (gamma_1 + gamma_2)/2, ..., gamma_s/2).  f at
    one point gives f_q at the current p and f_p at the current q; a value
    is reused while its argument has not moved, so the last kick's f_p
-   (or drift's f_q) serves the next step's first (FSAL) and a zero
+   (the position form: drift's f_q) serves the next step's first (FSAL)
+   and a zero
    coefficient costs nothing.  For separable f a pair then costs two calls (one for the
    drift, one for the kick), with second_order one (the kick).
    Compensated summation (optional) carries the round-off of every update
@@ -48,6 +49,7 @@ typedef struct {
   const sym_splitting *m;
   int npairs;
   int comp;               /* compensated summation */
+  int position;           /* drift-kick-drift Verlet steps */
   double *a, *b;          /* npairs: drift and kick coefficients */
   double *ca, *cb;        /* npairs: c_i and e_i (see the top) */
   double *fq;             /* d: f_q at the current p */
@@ -176,6 +178,7 @@ sp_alloc (int dim, const sym_method_opts *opts, int *status)
     return NULL;
   s->m = m;
   s->comp = own && own->compensated;
+  s->position = position;
   s->npairs = m->kind == SYM_SPLITTING ? m->stages : m->stages + 1;
   const int d = dim, n = 2 * d, naux = 2 + 2 * d + n;
   size_t len = sym_recs_len (n, naux) + sym_fcache_len (d, 0)
@@ -244,7 +247,7 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
       memcpy (fp, FPE (cu), (size_t) d * sizeof (double));
       fp_ok = 1;
     }
-  if (cont && ! so && FQE_OK (cu) != 0.0)
+  if (cont && ! so && s->position && FQE_OK (cu) != 0.0)
     {
       memcpy (fq, FQE (cu, d), (size_t) d * sizeof (double));
       fq_ok = 1;
