@@ -38,7 +38,11 @@
 ## (@qcode{"verlet"}, @qcode{"yoshida4"}, @dots{}; @code{help odeSV}).
 ## @item CompensatedSummation
 ## @code{odeSV}: @qcode{"on"} sums the updates of explicit steps with
-## compensation.  Default @qcode{"off"}.
+## compensation.  Default @qcode{"on"} for the explicit steps of a
+## @code{Method} other than @qcode{"verlet"}, else @qcode{"off"}.
+## @item VerletForm
+## @code{odeSV}: @qcode{"velocity"} (kick-drift-kick, the default) or
+## @qcode{"position"} (drift-kick-drift; explicit steps only).
 ## @item Nodes, Q_DoFs, PolynomialDegree
 ## @code{odeSPVI}: Gauss--Legendre nodes m (1 to 40, default 3;
 ## @code{P_DoFs} is an alias), Legendre modes of q (2 to min(2m, 41),
@@ -101,6 +105,7 @@ function opts = symplecticset (varargin)
                        "Nodes", "P_DoFs", "PolynomialDegree", ...
                        "HamiltonianHessFcn", "Separable", "Explicit", ...
                        "SecondOrder", "Method", "CompensatedSummation", ...
+                       "VerletForm", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
                        "NewtonSystem", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
                        "StepDensityFcn", "Ensemble", "Parallel"};
@@ -118,7 +123,8 @@ function opts = symplecticset (varargin)
     printf ("          Separable:  {[\"off\"], \"on\"}\n");
     printf ("        SecondOrder:  {[\"off\"], \"on\"}\n");
     printf ("             Method:  string, [\"verlet\"] (odeSV)\n");
-    printf ("CompensatedSummation: {[\"off\"], \"on\"}\n");
+    printf ("CompensatedSummation: {\"off\", \"on\"}, [on for Method's explicit steps]\n");
+    printf ("         VerletForm:  {[\"velocity\"], \"position\"} (odeSV)\n");
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");
     printf ("       NewtonMatrix:  {[\"auto\"], \"kept\", \"new\"}\n");

@@ -344,6 +344,8 @@ typedef struct {
   int compensated;
   int sparse;   /* Df sparse (sym_system.sparse): the implicit solves of
                    SE and SV factor theirs by KLU */
+  int position; /* SV and the compositions: drift-kick-drift Verlet steps
+                   (explicit only), else kick-drift-kick */
 } sym_onestep_opts;
 extern const sym_stepper_type *const sym_step_se;
 extern const sym_stepper_type *const sym_step_sv;

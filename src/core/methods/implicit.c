@@ -10,6 +10,50 @@
 #include <math.h>
 #include <string.h>
 
+/* ----------------------------------------------------------------- state */
+
+void *
+sym_onestep_alloc (int dim, int order, size_t size, int npr, int naux,
+                   size_t nown, const sym_method_opts *opts, int *status,
+                   double **own)
+{
+  int dummy;
+  if (! status)
+    status = &dummy;
+  sym_onestep *o = sym_onestep_new (dim, order, size, opts, status);
+  if (! o)
+    return NULL;
+  const int d = dim, n = 2 * d;
+  /* the separable step is explicit: no Df and no Newton state (O(d^2)
+     memory) */
+  const int implicit = ! o->separable;
+  const int jac = implicit && ! o->sparse;
+  size_t len = sym_recs_len (n, naux) + sym_fcache_len (d, jac) + nown
+               + (implicit ? (size_t) npr * sym_pred_len (d) : 0);
+  o->block = sym_calloc (len, sizeof (double));
+  int ok = o->block && ! (implicit && sym_onestep_implicit (o, npr, d, opts));
+  double *w = o->block;
+  if (ok)
+    {
+      sym_recs_place (&o->r, n, naux, w);
+      w += sym_recs_len (n, naux);
+      ok = ! sym_onestep_fcache (o, implicit, w);
+    }
+  if (! ok)
+    {
+      sym_onestep_free (o);
+      *status = SYM_ENOMEM;
+      return NULL;
+    }
+  w += sym_fcache_len (d, jac);
+  *own = w;
+  w += nown;
+  for (int k = 0; implicit && k < npr; k++)
+    sym_pred_place (&o->pr[k], d, w + (size_t) k * sym_pred_len (d));
+  *status = SYM_SUCCESS;
+  return o;
+}
+
 /* ------------------------------------------------------------- predictor */
 
 size_t

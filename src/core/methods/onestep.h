@@ -249,6 +249,13 @@ void *sym_onestep_new (int dim, int order, size_t size,
 /* npr implicit unknowns of size d: their Newton states */
 int sym_onestep_implicit (sym_onestep *o, int npr, int d,
                           const sym_method_opts *opts);
+/* The alloc of SE and SV: sym_onestep_new and the one block, with the
+   records (naux of their own each), the f cache, the state's own nown
+   doubles (*own) and, for implicit steps, npr unknowns' histories and
+   Newton states; NULL with *status on failure (nothing left allocated) */
+void *sym_onestep_alloc (int dim, int order, size_t size, int npr,
+                         int naux, size_t nown, const sym_method_opts *opts,
+                         int *status, double **own);
 /* what the stepper tables of SE and SV share, for a state that starts
    with a sym_onestep */
 /* The start of a step (t, h) ending at tend from y: the arguments

@@ -47,42 +47,15 @@ typedef struct {
 static void *
 se_alloc (int dim, const sym_method_opts *opts, int *status)
 {
-  int dummy;
-  if (! status)
-    status = &dummy;
-  se_state *s = sym_onestep_new (dim, 1, sizeof (se_state), opts, status);
+  /* own: x, scale, rv (d each); one implicit unknown */
+  double *w;
+  se_state *s = sym_onestep_alloc (dim, 1, sizeof (se_state), 1, 0,
+                                   3 * (size_t) dim, opts, status, &w);
   if (! s)
     return NULL;
-  const int d = dim, n = 2 * d;
-  /* records, f cache, and x, scale, rv: 3d; the separable step is
-     explicit: no Df and no Newton state (O(d^2) memory) */
-  const int implicit = ! s->o.separable;
-  size_t len = sym_recs_len (n, 0) + sym_fcache_len (d, implicit && ! s->o.sparse)
-               + 3 * (size_t) d + (implicit ? sym_pred_len (d) : 0);
-  s->o.block = sym_calloc (len, sizeof (double));
-  if (! s->o.block
-      || (implicit && sym_onestep_implicit (&s->o, 1, d, opts)))
-    {
-      sym_onestep_free (s);
-      *status = SYM_ENOMEM;
-      return NULL;
-    }
-  double *w = s->o.block;
-  sym_recs_place (&s->o.r, n, 0, w);
-  w += sym_recs_len (n, 0);
-  if (sym_onestep_fcache (&s->o, implicit, w))
-    {
-      sym_onestep_free (s);
-      *status = SYM_ENOMEM;
-      return NULL;
-    }
-  w += sym_fcache_len (d, implicit && ! s->o.sparse);
-  s->x = w; w += d;
-  s->scale = w; w += d;
-  s->rv = w; w += d;
-  if (implicit)
-    sym_pred_place (&s->o.pr[0], d, w);
-  *status = SYM_SUCCESS;
+  s->x = w;
+  s->scale = w + dim;
+  s->rv = w + 2 * dim;
   return s;
 }
 

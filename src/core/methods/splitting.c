@@ -10,11 +10,15 @@
    c_i = a_1 + ... + a_{i-1} the time of q, e_i = b_1 + ... + b_i that of
    p.  A composition of Stoermer-Verlet steps gamma_1 .. gamma_s is the
    sequence b = (gamma_1/2, (gamma_1 + gamma_2)/2, ..., gamma_s/2), a =
-   (gamma_1, ..., gamma_s, 0): its neighbouring half kicks merged.  f at
+   (gamma_1, ..., gamma_s, 0): its neighbouring half kicks merged.  In
+   the position form (own->position) the Verlet steps are drift-kick-drift
+   and their half drifts merge: b = (0, gamma_1, ..., gamma_s), a =
+   (gamma_1/2, (gamma_1 + gamma_2)/2, ..., gamma_s/2).  f at
    one point gives f_q at the current p and f_p at the current q; a value
    is reused while its argument has not moved, so the last kick's f_p
-   serves the next step's first (FSAL) and a zero coefficient costs
-   nothing.  For separable f a pair then costs two calls (one for the
+   (the position form: drift's f_q) serves the next step's first (FSAL)
+   and a zero
+   coefficient costs nothing.  For separable f a pair then costs two calls (one for the
    drift, one for the kick), with second_order one (the kick).
    Compensated summation (optional) carries the round-off of every update
    of q and p in a second vector, across steps too.
@@ -32,17 +36,20 @@
 #include <math.h>
 #include <string.h>
 
-/* Each step record also keeps (aux): whether f_p at its end is known,
-   that f_p (d), and the compensation of its end (n). */
+/* Each step record also keeps (aux): whether f_p and f_q at its end are
+   known, that f_p (d) and f_q (d), and the compensation of its end (n). */
 #define FPE_OK(rec) ((rec)->aux[0])
-#define FPE(rec) ((rec)->aux + 1)
-#define COMP(rec, d) ((rec)->aux + 1 + (d))
+#define FQE_OK(rec) ((rec)->aux[1])
+#define FPE(rec) ((rec)->aux + 2)
+#define FQE(rec, d) ((rec)->aux + 2 + (d))
+#define COMP(rec, d) ((rec)->aux + 2 + 2 * (d))
 
 typedef struct {
   sym_onestep o;          /* first: accept and dense (onestep.h) */
   const sym_splitting *m;
   int npairs;
   int comp;               /* compensated summation */
+  int position;           /* drift-kick-drift Verlet steps */
   double *a, *b;          /* npairs: drift and kick coefficients */
   double *ca, *cb;        /* npairs: c_i and e_i (see the top) */
   double *fq;             /* d: f_q at the current p */
@@ -104,9 +111,10 @@ sp_inner (sp_state *s, const sym_method_opts *opts)
   return SYM_SUCCESS;
 }
 
-/* The pairs of m into s (see the top) */
+/* The pairs of m into s (see the top); position: drift-kick-drift
+   Verlet steps */
 static void
-sp_pairs (sp_state *s)
+sp_pairs (sp_state *s, int position)
 {
   const sym_splitting *m = s->m;
   const int k = m->stages;
@@ -120,8 +128,10 @@ sp_pairs (sp_state *s)
       const double *g = m->coef;
       for (int i = 0; i <= k; i++)
         {
-          s->b[i] = 0.5 * ((i > 0 ? g[i - 1] : 0.0) + (i < k ? g[i] : 0.0));
-          s->a[i] = i < k ? g[i] : 0.0;
+          const double half = 0.5 * ((i > 0 ? g[i - 1] : 0.0)
+                                     + (i < k ? g[i] : 0.0));
+          s->b[i] = position ? (i > 0 ? g[i - 1] : 0.0) : half;
+          s->a[i] = position ? half : (i < k ? g[i] : 0.0);
         }
     }
   double c = 0.0, e = 0.0;
@@ -153,9 +163,11 @@ sp_alloc (int dim, const sym_method_opts *opts, int *status)
   const sym_splitting *m = &sym_splittings[im];
   const int sep = own && (own->separable || own->second_order);
   /* a splitting needs separable H; the compensated sums are of the
-     explicit updates */
+     explicit updates; the position form is of explicit Verlet steps */
+  const int position = own && own->position;
   if ((! sep && m->kind == SYM_SPLITTING)
-      || (! sep && own && own->compensated))
+      || (! sep && own && own->compensated)
+      || (position && (! sep || m->kind == SYM_SPLITTING)))
     {
       *status = SYM_EBADINPUT;
       return NULL;
@@ -166,8 +178,9 @@ sp_alloc (int dim, const sym_method_opts *opts, int *status)
     return NULL;
   s->m = m;
   s->comp = own && own->compensated;
+  s->position = position;
   s->npairs = m->kind == SYM_SPLITTING ? m->stages : m->stages + 1;
-  const int d = dim, n = 2 * d, naux = 1 + d + n;
+  const int d = dim, n = 2 * d, naux = 2 + 2 * d + n;
   size_t len = sym_recs_len (n, naux) + sym_fcache_len (d, 0)
                + 4 * (size_t) s->npairs + (size_t) d + (size_t) n;
   s->o.block = sym_calloc (len, sizeof (double));
@@ -188,7 +201,7 @@ sp_alloc (int dim, const sym_method_opts *opts, int *status)
   s->cb = w; w += s->npairs;
   s->fq = w; w += d;
   s->yw = w;
-  sp_pairs (s);
+  sp_pairs (s, position);
   *status = SYM_SUCCESS;
   return s;
 }
@@ -219,23 +232,27 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
   const double t = tr->t, h = tr->h;
   double *q = tr->y1, *p = tr->y1 + d, *fp = FPE (tr);
   double *c = COMP (tr, d), *fq = so ? p : s->fq;
-  int st, fp_ok, fq_ok = so;
+  int st, fp_ok = 0, fq_ok = so;
   memcpy (tr->y1, tr->y0, (size_t) n * sizeof (double));
   if (comp && cont)
     memcpy (c, COMP (cu, d), (size_t) n * sizeof (double));
   else
     memset (c, 0, (size_t) n * sizeof (double));
-  /* f_p at q_k: the last step's (FSAL), else with f_q at p_k from f(t_k,
-     y_k), which the record keeps; not evaluated for a method that
-     begins with a drift when f_q is p */
+  /* f_p at q_k and f_q at p_k: the last step's (FSAL); what the first
+     update needs and did not get so, with the other from f(t_k, y_k),
+     which the record keeps (not evaluated for a method that begins with
+     a drift when f_q is p) */
   if (cont && FPE_OK (cu) != 0.0)
     {
       memcpy (fp, FPE (cu), (size_t) d * sizeof (double));
       fp_ok = 1;
     }
-  else if (so && s->b[0] == 0.0)
-    fp_ok = 0;
-  else
+  if (cont && ! so && s->position && FQE_OK (cu) != 0.0)
+    {
+      memcpy (fq, FQE (cu, d), (size_t) d * sizeof (double));
+      fq_ok = 1;
+    }
+  if (s->b[0] != 0.0 ? ! fp_ok : ! fq_ok)
     {
       if ((st = sym_recs_f0 (&s->o.r, ev)))
         return st;
@@ -285,6 +302,9 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
         }
     }
   FPE_OK (tr) = fp_ok;
+  FQE_OK (tr) = fq_ok && ! so;
+  if (fq_ok && ! so)
+    memcpy (FQE (tr, d), fq, (size_t) d * sizeof (double));
   if (fp_ok && fq_ok)
     {
       /* f at the end is known: no call for the dense output */
@@ -305,6 +325,7 @@ sp_implicit (sp_state *s, sym_eval *ev, double *yerr, double *ynext)
   double ti = tr->t;
   int st;
   FPE_OK (tr) = 0;
+  FQE_OK (tr) = 0;
   memcpy (tr->y1, tr->y0, (size_t) n * sizeof (double));
   for (int k = 0; k < s->m->stages; k++)
     {

@@ -34,6 +34,10 @@
    keeps the step symmetric for a T(t, p).  With second_order (f_q = p)
    A is not called: one call a step, and f at the step's end is known.
 
+   Position form (own->position, separable H only): the adjoint
+   drift-kick-drift step, q half drifts around a whole kick at the
+   midpoint, also two calls a step (one with second_order; sv_position).
+
    Error estimate, of the local error y_{k+1} - y(t_{k+1}):
      err = y_{k+1} - y_k - (h/2) (f(t_k, y_k) + f(t_{k+1}, y_{k+1}))
            + (h^3/12) y''',
@@ -54,7 +58,8 @@
 #include <string.h>
 
 /* Each step record also keeps (aux) p_{k+1/2} and f_p(t_{k+1}, q_{k+1},
-   p_{k+1/2}), d values each. */
+   p_{k+1/2}), d values each (the position form: q_{k+1/2} and f_q(t_{k+1},
+   q_{k+1/2}, p_{k+1})). */
 #define PH(rec) ((rec)->aux)
 #define FPE(rec, d) ((rec)->aux + (d))
 
@@ -63,6 +68,7 @@ typedef struct {
   double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
   double *fqa;           /* d: f_q(t_k, q_k, p_{k+1/2}) */
   double *ym;            /* n: the estimate's midpoint at a fresh start */
+  int position;          /* drift-kick-drift (explicit steps only) */
   /* the step being solved (for the Newton callbacks) */
   sym_eval *ev;
   double tk, hk;
@@ -126,45 +132,27 @@ sv_alloc (int dim, const sym_method_opts *opts, int *status)
   int dummy;
   if (! status)
     status = &dummy;
-  sv_state *s = sym_onestep_new (dim, 2, sizeof (sv_state), opts, status);
+  const sym_onestep_opts *own = opts ? opts->own : NULL;
+  /* the position form is explicit only */
+  if (own && own->position && ! own->separable && ! own->second_order)
+    {
+      *status = SYM_EBADINPUT;
+      return NULL;
+    }
+  /* records with aux (2d); own: x, scale, rv, fqa (d each), ym (n); two
+     implicit unknowns */
+  double *w;
+  sv_state *s = sym_onestep_alloc (dim, 2, sizeof (sv_state), 2, 2 * dim,
+                                   6 * (size_t) dim, opts, status, &w);
   if (! s)
     return NULL;
-  const int d = dim, n = 2 * d;
-  /* records (aux: 2d), f cache, and x, scale, rv, fqa: 4d, ym: n; the
-     separable step is explicit: no Df and no Newton state (O(d^2)) */
-  const int implicit = ! s->o.separable;
-  size_t len = sym_recs_len (n, 2 * d) + sym_fcache_len (d, implicit && ! s->o.sparse)
-               + 4 * (size_t) d + (size_t) n
-               + (implicit ? 2 * sym_pred_len (d) : 0);
-  s->o.block = sym_calloc (len, sizeof (double));
-  if (! s->o.block
-      || (implicit && sym_onestep_implicit (&s->o, 2, d, opts)))
-    {
-      sym_onestep_free (s);
-      *status = SYM_ENOMEM;
-      return NULL;
-    }
-  double *w = s->o.block;
-  sym_recs_place (&s->o.r, n, 2 * d, w);
-  w += sym_recs_len (n, 2 * d);
-  if (sym_onestep_fcache (&s->o, implicit, w))
-    {
-      sym_onestep_free (s);
-      *status = SYM_ENOMEM;
-      return NULL;
-    }
-  w += sym_fcache_len (d, implicit && ! s->o.sparse);
+  const int d = dim;
+  s->position = own && own->position;
   s->x = w; w += d;
   s->scale = w; w += d;
   s->rv = w; w += d;
   s->fqa = w; w += d;
-  s->ym = w; w += n;
-  if (implicit)
-    {
-      sym_pred_place (&s->o.pr[0], d, w);
-      sym_pred_place (&s->o.pr[1], d, w + sym_pred_len (d));
-    }
-  *status = SYM_SUCCESS;
+  s->ym = w;
   return s;
 }
 
@@ -199,6 +187,78 @@ sv_trap_error (sv_state *s, sym_eval *ev, int cont, double *yerr)
   return SYM_SUCCESS;
 }
 
+/* the end of a step: f at the ends as needed, the estimate, ynext */
+static int
+sv_finish (sv_state *s, sym_eval *ev, int cont, double *yerr,
+           double *ynext)
+{
+  int st = sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext);
+  if (st)
+    return st;
+  /* (not after a result that overflowed: sym_recs_finish left it
+     unevaluated and the trial unfinished) */
+  if (yerr && s->o.r.trial_ok && (st = sv_trap_error (s, ev, cont, yerr)))
+    s->o.r.trial_ok = 0;
+  return st;
+}
+
+/* The position form (drift-kick-drift) for a separable H, into the
+   trial's y1.  With f_q(p_k) from the last step (FSAL: its end's drift
+   evaluated it) or from f(t_k, y_k) at a fresh start:
+     q_{k+1/2} = q_k + (h/2) f_q(p_k)
+     B = f(t_k + h/2, [q_{k+1/2}; p_k]) -> p_{k+1} = p_k + h f_p(q_{k+1/2})
+     C = f(t_{k+1}, [q_{k+1/2}; p_{k+1}]) -> q_{k+1} = q_{k+1/2}
+                                               + (h/2) f_q(p_{k+1})
+   Two calls a step; with second_order (f_q = p) one, B, and f at the
+   step's end is not known (f_p(q_{k+1}) is never evaluated).  The aux
+   of a record keeps q_{k+1/2} and f_q(p_{k+1}). */
+static int
+sv_position (sv_state *s, sym_eval *ev, int cont)
+{
+  const int d = s->o.d, so = s->o.second_order;
+  sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
+  const double t = tr->t, h = tr->h, hh = 0.5 * h;
+  const double *q0 = tr->y0, *p0 = tr->y0 + d, *fq = p0;
+  double *q1 = tr->y1, *p1 = tr->y1 + d, *qh = PH (tr), *fqe = FPE (tr, d);
+  int st;
+  if (! so)
+    {
+      if (cont)
+        fq = FPE (cu, d);
+      else
+        {
+          if ((st = sym_recs_f0 (&s->o.r, ev)))
+            return st;
+          fq = tr->f0;
+        }
+      memcpy (s->fqa, fq, (size_t) d * sizeof (double));
+    }
+  for (int i = 0; i < d; i++)
+    qh[i] = q0[i] + hh * fq[i];
+  if ((st = sym_fcache_f (&s->o.fc, ev, t + hh, qh, p0)))     /* B */
+    return st;
+  /* f_q at p_k with q_k (or q_{k-1/2}) and with q_{k+1/2}: the same if H
+     is separable (and T does not depend on t) */
+  if (! so)
+    sym_sep_check (ev, t, d, s->fqa, s->o.fc.fw);
+  for (int i = 0; i < d; i++)
+    p1[i] = p0[i] + h * s->o.fc.fw[d + i];
+  if (so)
+    {
+      for (int i = 0; i < d; i++)
+        q1[i] = qh[i] + hh * p1[i];
+      return SYM_SUCCESS;
+    }
+  if ((st = sym_fcache_f (&s->o.fc, ev, tr->tend, qh, p1)))  /* C */
+    return st;
+  for (int i = 0; i < d; i++)
+    {
+      fqe[i] = s->o.fc.fw[i];
+      q1[i] = qh[i] + hh * fqe[i];
+    }
+  return SYM_SUCCESS;
+}
+
 static int
 sv_step (void *state, sym_eval *ev, double t, double h, double tend,
          const double *y, double *ynext, double *yerr)
@@ -217,6 +277,12 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
   s->hk = h;
   s->yk = tr->y0;
 
+  if (s->o.separable && s->position)
+    {
+      if ((st = sv_position (s, ev, cont)))
+        return st;
+      return sv_finish (s, ev, cont, yerr, ynext);
+    }
   if (s->o.separable)
     {
       const double *fp;
@@ -293,13 +359,7 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
       memcpy (tr->f1 + d, fpe, (size_t) d * sizeof (double));
       tr->have_f1 = 1;
     }
-  if ((st = sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext)))
-    return st;
-  /* (not after a result that overflowed: sym_recs_finish left it
-     unevaluated and the trial unfinished) */
-  if (yerr && s->o.r.trial_ok && (st = sv_trap_error (s, ev, cont, yerr)))
-    s->o.r.trial_ok = 0;
-  return st;
+  return sv_finish (s, ev, cont, yerr, ynext);
 }
 
 static const sym_stepper_type sv_type = {

@@ -4,14 +4,16 @@
 /* sv.c -- odeSV: Stoermer-Verlet (core: methods/sv.c) and the
    compositions and splittings of the table sym_splittings (core:
    methods/splitting.c), chosen by Method.  Own options: those of odeSE,
-   Method, CompensatedSummation; sol gains the method and its order. */
+   Method, CompensatedSummation, VerletForm; sol gains the method and its
+   order. */
 #include "onestep.h"
 
 #include <stdio.h>
 #include <string.h>
 
 static const char *const sv_options[] = {
-  "Separable", "SecondOrder", "Method", "CompensatedSummation", NULL
+  "Separable", "SecondOrder", "Method", "CompensatedSummation",
+  "VerletForm", NULL
 };
 
 static void
@@ -38,9 +40,26 @@ sv_parse (const char *solver, const mxArray *opts, void *own)
                              symmex_describe_word (v, got, sizeof got));
         }
     }
+  /* on by default where it costs no call and no measurable time: the
+     explicit steps of a method other than Verlet (whose own stepper, with
+     its adaptive steps, has no compensated sums) */
   const mxArray *c = symmex_field (solver, opts, "CompensatedSummation");
   o->compensated = c ? symmex_on_off (solver, c, "CompensatedSummation")
-                   : 0;
+                   : o->method != 0 && o->separable;
+  static const char *const forms[] = { "velocity", "position", NULL };
+  const mxArray *f = symmex_field (solver, opts, "VerletForm");
+  o->position = f ? symmex_word (solver, f, "VerletForm", forms) == 1 : 0;
+  const sym_splitting *m = &sym_splittings[o->method];
+  if (o->position && m->kind == SYM_SPLITTING)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: VerletForm \"position\" is for "
+                       "Verlet and its compositions; Method \"%s\" is a "
+                       "splitting with its own kicks and drifts (leave "
+                       "VerletForm out)", solver, m->name);
+  if (o->position && ! o->separable)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: VerletForm \"position\" takes "
+                       "explicit steps: set Separable (or SecondOrder) on, "
+                       "or leave VerletForm \"velocity\" for a general H",
+                       solver);
 }
 
 /* Stoermer-Verlet's own stepper, with its adaptive steps, unless another
