@@ -282,7 +282,7 @@
 %!   y1 = last_y (@kep, [0 2], Y0(:, k), o{1:end-2}, "Separable", "on");
 %!   assert (Y(end, :, k).', y1, 1e-13);
 %! endfor
-%!warning <odeSV.*Separable is on.*dH/dp changed with q>
+%!warning <odeSV.*Separable is on.*d(H/dp changed with q|H/dq changed with p)>
 %! ## the position form checks separability with the calls it makes
 %! f = @(t, y) [y(2) * (1 + y(1)^2/4); -sin(y(1)) - y(2)^2 * y(1)/4];
 %! sol = odeSV (f, [0 1], [1; 0.5], symplecticset ("Separable", "on", ...
