@@ -10,6 +10,10 @@
 #   make deps-memory    deps, and valgrind for check-memory and valgrind
 #   make demo           deps and all, then run tools/demo.m
 #   make check          deps and all, then the whole test suite (C + Octave)
+#   make check-blas     all, then the regression and the solvers' tests under
+#                       OpenBLAS core types, the reference BLAS/LAPACK and
+#                       libm without FMA (tools/check-blas.sh, ~2 min);
+#                       FULL=1: the whole Octave suite under each (~10 min each)
 #   make valgrind       deps-memory, then the C tests under valgrind
 #   make check-memory   deps-memory and all, then the MEX functions under
 #                       valgrind (tests/check_memory.sh, ~90 s)
@@ -102,6 +106,11 @@ check-c:
 check-octave: all
 	$(OCTAVE_RUN) --eval 'addpath ("$(CURDIR)/tests"); exit (run_tests ())'
 
+check-blas: all
+	@mkdir -p build
+	bash tools/check-blas.sh "$(OCTAVE)" "$(DEVPATH)" $(if $(filter 1,$(FULL)),full,quick) \
+	  2>&1 | tee build/check-blas.log
+
 valgrind: deps-memory
 	$(MAKE) -C tests/c valgrind
 
@@ -174,5 +183,5 @@ clean:
 	# the m-files there)
 	rm -f inst/*.mex
 
-.PHONY: all deps deps-memory setup demo check check-c check-octave valgrind \
+.PHONY: all deps deps-memory setup demo check check-c check-octave check-blas valgrind \
         check-memory bench bench-core dist install check-installed clean
