@@ -166,7 +166,7 @@
 %! experr (@() odeSV (kep, [0 1], [1; 0; 0; 1], symplecticset ("TimeStepSize", 0.1)),
 %!         "compiled FCN takes its parameters");
 %! experr (@() odeSV (pen, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1), [1 2]),
-%!         "parameters");
+%!         "^odeSV: the compiled FCN takes its parameters as PAR1");
 %! experr (@() symlagrangian (px^4 - x^2, x, px), "^symlagrangian: L must be quadratic in V");
 %! experr (@() symlagrangian (px*x - x^2, x, px), "^symlagrangian: the mass matrix");
 

@@ -9,7 +9,9 @@
 #
 # Checks: octave-cli, mkoctfile, a C compiler that links against LAPACK,
 # BLAS and KLU (SuiteSparse, for sparse Jacobians), Octave's parallel
-# package (pkg load parallel: the option Parallel and its tests); with
+# package (pkg load parallel: the option Parallel and its tests), its
+# symbolic package (pkg load symbolic, with SymPy: symhamiltonian,
+# symlagrangian and their tests; optional for users); with
 # `memory`, valgrind too (only make check-memory and make valgrind need
 # it).  When all are there it only checks (quick, no network); otherwise
 # it runs apt-get update + apt-get install once for the whole set (as
@@ -18,7 +20,7 @@
 # Environment: SYM_DEPS_FORCE=1 installs even if everything looks present.
 set -eu
 
-PACKAGES="octave octave-dev liblapack-dev libblas-dev libsuitesparse-dev octave-parallel"
+PACKAGES="octave octave-dev liblapack-dev libblas-dev libsuitesparse-dev octave-parallel octave-symbolic"
 TOOLS="octave-cli mkoctfile"
 case "${1:-}" in
   "") ;;
@@ -57,12 +59,14 @@ check () {
   if command -v octave-cli >/dev/null 2>&1; then
     octave-cli --norc --no-gui --eval "pkg load parallel" </dev/null \
       >/dev/null 2>&1 || missing="$missing octave-parallel"
+    octave-cli --norc --no-gui --eval "pkg load symbolic; sym ('x');" </dev/null \
+      >/dev/null 2>&1 || missing="$missing octave-symbolic"
   fi
 }
 
 check
 if [ -z "$missing" ] && [ "${SYM_DEPS_FORCE:-0}" != 1 ]; then
-  echo "deps: ok ($(echo $TOOLS | sed 's/ /, /g'), LAPACK/BLAS, KLU and the parallel package present)"
+  echo "deps: ok ($(echo $TOOLS | sed 's/ /, /g'), LAPACK/BLAS, KLU, the parallel and symbolic packages present)"
   exit 0
 fi
 
