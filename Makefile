@@ -10,6 +10,8 @@
 #   make deps-memory    deps, and valgrind for check-memory and valgrind
 #   make demo           deps and all, then run tools/demo.m
 #   make check          deps and all, then the whole test suite (C + Octave)
+#   make check-quick    all, then the C tests and the Octave tests of the
+#                       main paths (QUICK_TESTS below; ~2 min on 2 cores)
 #   make check-blas     all, then the regression and the solvers' tests under
 #                       OpenBLAS core types, the reference BLAS/LAPACK and
 #                       libm without FMA (tools/check-blas.sh, ~2 min);
@@ -101,6 +103,16 @@ check: setup
 check-c:
 	$(MAKE) -C tests/c check
 
+# The Octave files of check-quick: each solver's fixed and adaptive paths,
+# the options and bad input; run_tests.m takes them from SYMPLECTIC_TESTS.
+QUICK_TESTS = inst/odeSE.m inst/odeSV.m inst/odeSPVI.m inst/symplecticset.m \
+  tests/test_bad_input.m tests/test_se_sv.m tests/test_spvi.m
+
+check-quick: all
+	$(MAKE) --no-print-directory check-c
+	SYMPLECTIC_TESTS="$(QUICK_TESTS)" \
+	  $(OCTAVE_RUN) --eval 'addpath ("$(CURDIR)/tests"); exit (run_tests ())'
+
 # tests/run_tests.m prints "N passed, M failed" last and returns the exit
 # status (non-zero on any failure or when no test ran).
 check-octave: all
@@ -183,5 +195,5 @@ clean:
 	# the m-files there)
 	rm -f inst/*.mex
 
-.PHONY: all deps deps-memory setup demo check check-c check-octave check-blas valgrind \
+.PHONY: all deps deps-memory setup demo check check-quick check-c check-octave check-blas valgrind \
         check-memory bench bench-core dist install check-installed clean

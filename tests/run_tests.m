@@ -22,6 +22,11 @@
 ## @item every @file{tests/test_*.m} file of the source tree.
 ## @end itemize
 ##
+## If the environment variable @env{SYMPLECTIC_TESTS} is set (a
+## space-separated list of file names relative to the source tree,
+## e.g. @samp{inst/odeSE.m tests/test_bad_input.m}), only those files
+## run, after the layout check; @code{make check-quick} uses it.
+##
 ## The last line printed is @samp{N passed, M failed}.  Used by
 ## @code{make check}:
 ##
@@ -119,6 +124,19 @@ function status = run_tests (mode = "dev")
   files = [files, cellfun(@(f) fullfile (testsdir, f), sort ({t.name}),
                           "uniformoutput", false)];
   files = files(cellfun (@has_tests, files));
+  ## A subset (make check-quick): keep the files named, complain of the rest.
+  subset = strsplit (strtrim (getenv ("SYMPLECTIC_TESTS")));
+  subset = subset(! cellfun (@isempty, subset));
+  if (! isempty (subset))
+    rel = cellfun (@(f) rel_name (f, [{root}, pkgdirs]), files,
+                   "uniformoutput", false);
+    for k = find (! ismember (subset, rel))
+      printf ("FAIL: SYMPLECTIC_TESTS names '%s', which has no tests\n",
+              subset{k});
+      nbad += 1;
+    endfor
+    files = files(ismember (rel, subset));
+  endif
 
   ## Run from an empty scratch directory: nothing there can shadow a
   ## package function, and files the tests write do not litter the tree.
@@ -134,10 +152,8 @@ function status = run_tests (mode = "dev")
     cd (scratch);
     for i = 1:numel (files)
       f = files{i};
-      name = f;
-      for d = [{root}, pkgdirs]
-        name = strrep (name, [d{1} filesep], "");
-      endfor
+      name = rel_name (f, [{root}, pkgdirs]);
+      tic_f = tic ();
       try
         ## Failing blocks are written to stdout ("quiet": only those).
         [n, nmax, nxf, nbug, nsk, nrtsk] = test (f, "quiet", stdout);
@@ -147,8 +163,9 @@ function status = run_tests (mode = "dev")
       end_try_catch
       cd (scratch);   # in case a test changed directory
       bad = nmax - n - nxf - nbug;
-      printf ("%-50s pass %d/%d%s\n", name, n, nmax,
-              ifelse_str (bad > 0, sprintf ("  FAIL %d", bad), ""));
+      printf ("%-50s pass %d/%d%s  (%.1f s)\n", name, n, nmax,
+              ifelse_str (bad > 0, sprintf ("  FAIL %d", bad), ""),
+              toc (tic_f));
       npass += n;
       nfail += bad;
       nxfail += nxf + nbug;
@@ -188,6 +205,14 @@ function files = package_test_files (d)
             || (numel (nm) > 4 && strcmp (nm(end-3:end), "-tst")))
       files{end+1} = f;
     endif
+  endfor
+endfunction
+
+## F relative to the first of DIRS that contains it.
+function name = rel_name (f, dirs)
+  name = f;
+  for d = dirs
+    name = strrep (name, [d{1} filesep], "");
   endfor
 endfunction
 
