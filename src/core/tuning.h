@@ -200,6 +200,16 @@
    only while its LU is this small: an LU of 64 unknowns costs about two
    callbacks of Octave */
 #define SYM_SPVI_EVERY_N 64
+/* odeSPVI's fixed steps hold the error of the final move of f_p
+   (solve.c) to this fraction of their solve's tolerance: an extrapolated
+   matrix's move errs with a sign, step after step, and drifts the energy
+   at the solve's own tolerance */
+#define SYM_SPVI_MOVE_FIXED 1e-1
+/* exact stages (staged.c): the iteration on Newton's matrix stops when
+   its change is below EPS ulps of the correction, or after ITERS (its
+   contraction is O(h^2): two or three suffice) */
+#define SYM_SPVI_EXACT_EPS 4.0
+#define SYM_SPVI_EXACT_ITERS 8
 /* by default Newton's systems go by stages (staged.c) above this many
    unknowns of the whole step system */
 #define SYM_SPVI_STAGES_N 600

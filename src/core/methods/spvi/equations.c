@@ -17,7 +17,7 @@ spvi_core_free (spvi_core *c)
   spvi_stages_free (c);
   double **p[] = { &c->z, &c->w, &c->phi, &c->dl, &c->wdl, &c->g, &c->xb,
                    &c->bw, &c->A, &c->Y, &c->F, &c->tj, &c->xf, &c->x,
-                   &c->scale, &c->Fo, &c->xfo, &c->wk, &c->Ae[0],
+                   &c->scale, &c->Fo, &c->xfo, &c->wk, &c->inc, &c->Ae[0],
                    &c->Ae[1] };
   for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
     {
@@ -52,6 +52,7 @@ spvi_core_init (spvi_core *c, int d, int n, int m, int stages)
   c->Fo = sym_calloc (nn * m, sizeof (double));
   c->xfo = sym_calloc (c->N, sizeof (double));
   c->wk = sym_calloc (nn + d, sizeof (double));
+  c->inc = sym_calloc (nn, sizeof (double));
   c->Ae[0] = sym_calloc (na, sizeof (double));
   c->Ae[1] = sym_calloc (na, sizeof (double));
   c->x = sym_calloc (c->N, sizeof (double));
@@ -61,7 +62,7 @@ spvi_core_init (spvi_core *c, int d, int n, int m, int stages)
   if (! c->z || ! c->w || ! c->phi || ! c->dl || ! c->wdl || ! c->g
       || ! c->xb || ! c->bw || ! c->A || ! c->Y || ! c->F || ! c->tj
       || ! c->xf || ! c->x || ! c->scale || ! l || ! c->Fo
-      || ! c->xfo || ! c->wk || ! c->Ae[0] || ! c->Ae[1])
+      || ! c->xfo || ! c->wk || ! c->inc || ! c->Ae[0] || ! c->Ae[1])
     goto fail;
   if ((st = sym_newton_init (&c->nw, c->N, NULL))
       || (! stages && (st = sym_newton_lu (&c->nw))))
@@ -234,7 +235,9 @@ spvi_end (spvi_core *c, double *yend)
         dqk += 2.0 * a[(size_t) (i - 1) * d + k];
       for (int j = 0; j < m; j++)
         dpk += c->w[j] * c->F[(size_t) j * nn + d + k];
+      c->inc[k] = dqk;
+      c->inc[d + k] = hh * dpk;
       yend[k] = yk[k] + dqk;
-      yend[d + k] = yk[d + k] + hh * dpk;
+      yend[d + k] = yk[d + k] + c->inc[d + k];
     }
 }

@@ -98,10 +98,11 @@ fill (spvi_core *c, double *M)
     }
 }
 
+/* The node Jacobians c->A at x, with f at x when the same calls give it
+   (the residual at this x, which follows, reuses it) */
 int
-spvi_matrix (void *ctx, const double *x, double *M)
+spvi_node_jacobians (spvi_core *c, const double *x)
 {
-  spvi_core *c = ctx;
   const int m = c->m;
   const size_t nn = 2 * (size_t) c->d;
   int st;
@@ -111,8 +112,7 @@ spvi_matrix (void *ctx, const double *x, double *M)
     {
       /* f comes with the Jacobians: from the same calls (the Hessian as
          FCN's second output), or for finite differences from the call of
-         the perturbed states (one batch, or the m calls before them); the
-         residual at this x, which follows, reuses it */
+         the perturbed states (one batch, or the m calls before them) */
       if (! fhere)
         spvi_eval_shift (c, x);
       c->fvalid = 0;
@@ -129,18 +129,76 @@ spvi_matrix (void *ctx, const double *x, double *M)
         return st;
       memcpy (c->xf, x, nb);
       c->fvalid = 1;
+      return SYM_SUCCESS;
     }
-  else
-    {
-      /* the Jacobian callback, or finite differences from the F at x */
-      spvi_states (c, x);
-      if ((st = sym_jac_many (c->ev, m, c->tj, c->Y, c->F, c->A)))
-        return st;
-    }
+  /* the Jacobian callback, or finite differences from the F at x */
+  spvi_states (c, x);
+  return sym_jac_many (c->ev, m, c->tj, c->Y, c->F, c->A);
+}
+
+int
+spvi_matrix (void *ctx, const double *x, double *M)
+{
+  spvi_core *c = ctx;
+  int st = spvi_node_jacobians (c, x);
+  if (st)
+    return st;
   keep (c);
   fill (c, M);
   c->extra = 0;
   return SYM_SUCCESS;
+}
+
+/* out = M v for Newton's matrix M of the node Jacobians c->A and the step
+   c->h (the entries of fill, as a product); dy: work, 4d m */
+void
+spvi_matvec (const spvi_core *c, const double *v, double *out, double *dy)
+{
+  const int d = c->d, n = c->n, m = c->m;
+  const size_t nn = 2 * (size_t) d;
+  const double hh = 0.5 * c->h;
+  const double *da = v, *dP = v + (size_t) (n - 1) * d;
+  double *df = dy + nn * m;
+  /* the nodes' dY_j = [dQ_j; dP_j], then dF_j = A_j dY_j */
+  for (int j = 0; j < m; j++)
+    {
+      double *y = dy + j * nn, *f = df + j * nn;
+      for (int k = 0; k < d; k++)
+        {
+          double s = 0.0;
+          for (int i = 1; i < n; i++)
+            s += c->phi[j * n + i] * da[(size_t) (i - 1) * d + k];
+          y[k] = s;
+          y[d + k] = dP[(size_t) j * d + k];
+        }
+      const double *A = spvi_A (c, j);
+      for (size_t k = 0; k < nn; k++)
+        f[k] = 0.0;
+      for (size_t l = 0; l < nn; l++)
+        if (y[l] != 0.0)
+          for (size_t k = 0; k < nn; k++)
+            f[k] += A[k + l * nn] * y[l];
+    }
+  for (int s = 1; s < n; s++)
+    for (int k = 0; k < d; k++)
+      {
+        double s1 = 0.0, s2 = 0.0;
+        for (int j = 0; j < m; j++)
+          {
+            s1 += c->wdl[j * n + s] * dP[(size_t) j * d + k];
+            s2 += c->g[j * n + s] * df[j * nn + d + k];
+          }
+        out[(size_t) (s - 1) * d + k] = s1 + hh * s2;
+      }
+  double *o2 = out + (size_t) (n - 1) * d;
+  for (int j = 0; j < m; j++)
+    for (int k = 0; k < d; k++)
+      {
+        double s1 = 0.0;
+        for (int i = 1; i < n; i++)
+          s1 += c->dl[j * n + i] * da[(size_t) (i - 1) * d + k];
+        o2[(size_t) j * d + k] = hh * df[j * nn + k] - s1;
+      }
 }
 
 /* The current step starts shift after the last one: the kept

@@ -96,7 +96,9 @@ prepare_matrix (spvi_core *c, sym_eval *ev, const spvi_state *s, double h)
                         || (s->newmat == SYM_MATRIX_AUTO
                             && c->N <= SYM_SPVI_EVERY_N && ev->rhs_batch
                             && ! ev->jac && ! ev->rhs_jac));
-  c->nw.quad = every;
+  /* the stages' solve is Newton's own only when exact (staged.c) */
+  c->exact = every && spvi_stages_dense (c);
+  c->nw.quad = every && (! c->sg || c->exact);
   if (every)
     {
       sym_newton_invalidate (&c->nw);
@@ -106,7 +108,7 @@ prepare_matrix (spvi_core *c, sym_eval *ev, const spvi_state *s, double h)
         c->nw.kq_ok = 0;
     }
   if (c->sg)
-    ;   /* no node Jacobians to extrapolate or borrow */
+    ;   /* no node Jacobians to extrapolate or borrow: kept or new */
   else if (fast && c->nw.have_matrix)
     spvi_extrapolate (c, ev);
   else if (fast && ! method)
@@ -115,8 +117,7 @@ prepare_matrix (spvi_core *c, sym_eval *ev, const spvi_state *s, double h)
 }
 
 /* After Newton: the corrections that the move of f_p to the final x
-   needs (pairs n - 1 = m: while its estimated error exceeds the
-   tolerance; after a single exact correction, nw.one, the Jacobians of
+   needs (pairs n - 1 = m: while its estimated error exceeds move_tol; after a single exact correction, nw.one, the Jacobians of
    the move are those at xf itself and its error is the quadratic
    remainder that Newton's estimate has bounded), or the earlier scheme's
    one more correction (not counted in iters) */
@@ -127,7 +128,7 @@ final_corrections (spvi_core *c, sym_eval *ev, const spvi_scale *S,
   const int fast = c->n - 1 == c->m;
   int st = SYM_SUCCESS;
   for (int k = 0; fast && ! c->nw.one && k < SYM_SPVI_MOVE_MAX
-                  && move_error (c, S->p) > c->nw.tol; k++)
+                  && move_error (c, S->p) > c->move_tol; k++)
     {
       if ((st = sym_newton_dx (&c->nw, prob, c->x, NULL, &ev->st.cnt,
                                NULL)))
@@ -186,6 +187,7 @@ spvi_solve (spvi_core *c, sym_eval *ev, double t, double h,
   for (int i = 0; i < N; i++)
     c->scale[i] = i < (n - 1) * d ? S->q : S->p;
   c->nw.tol = fast ? tol : s->tol;
+  c->move_tol = s->adaptive ? c->nw.tol : SYM_SPVI_MOVE_FIXED * c->nw.tol;
   c->nw.maxit = s->maxit;
   sym_newton_problem prob = { spvi_residual, spvi_matrix, c,
                               c->sg ? spvi_stages_factor : NULL,

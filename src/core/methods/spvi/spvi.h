@@ -69,8 +69,11 @@ typedef struct {
   double *g;           /* w_j (l_i(z_j) - 1) */
   double *xb, *bw;     /* -1, z_1..z_m, 1 and their barycentric weights */
   double *A;           /* node Jacobians, (2d)^2 each, of the kept matrix
-                          (NULL with stages: their one J serves) */
+                          (with stages only when exact) */
   spvi_stages *sg;     /* NULL: Newton's matrix in full, dense */
+  int exact;           /* stages with a new matrix every solve: node
+                          Jacobians evaluated, the stages' solve iterated
+                          to Newton's own correction (staged.c) */
   double *Y, *F, *tj;  /* node states and f values (2d x m), node times */
   double *xf;          /* the x at which F was evaluated */
   int fvalid;
@@ -80,7 +83,10 @@ typedef struct {
   int ndx;
   double *x, *scale;   /* (the start of a solve: nw.x0) */
   double *wk;          /* 3d (work) */
+  double *inc;         /* 2d: y_{k+1} - y_k of the last spvi_end, before
+                          its rounding */
   sym_newton nw;
+  double move_tol;     /* the bound on move_error (solve.c) */
   double h_mat;        /* h of the kept matrix */
   /* |Aqp| |p| and |Apq| |q| of the node Jacobians in A (see
      predict.c), at the state of the step that first asked; noise_ok = 0
@@ -122,6 +128,8 @@ typedef struct {
                           output */
   double *fe0, *fe1;   /* 2d each */
   double *emis;        /* 2d: y1 - u(1), the end mismatch */
+  double *cmp;         /* 2d: the rounding of y1 (fixed steps: their sum
+                          compensated, step.c) */
   int M, have_fe0, have_fe1, have_emis;
   int ends_bad;        /* f at an end is NaN or Inf: the polynomials */
   double noise_q, noise_p;  /* accuracy of a and of P: the solve's
@@ -207,6 +215,11 @@ void spvi_end (spvi_core *c, double *yend);
 /* Newton's matrix at x from new node Jacobians (sym_newton_problem's
    matrix) */
 int spvi_matrix (void *ctx, const double *x, double *M);
+/* the node Jacobians c->A at x (f at x too where the same calls give it) */
+int spvi_node_jacobians (spvi_core *c, const double *x);
+/* out = M v, M Newton's matrix of c->A (dy: work, 4 d m) */
+void spvi_matvec (const spvi_core *c, const double *v, double *out,
+                  double *dy);
 /* the kept evaluations count from a step that starts shift later */
 void spvi_core_move (spvi_core *c, double shift);
 /* the matrix from node Jacobians extrapolated in time (no callback);
@@ -219,12 +232,14 @@ int spvi_borrow (spvi_core *c, const spvi_core *src, sym_eval *ev);
 /* ---------------------------------------------------------------- staged.c */
 /* c->sg for the pair of c (SYM_EBADINPUT: not a pair n - 1 = m) */
 int spvi_stages_init (spvi_core *c, int sparse);
+/* whether the stages can be exact (dense J) */
+int spvi_stages_dense (const spvi_core *c);
 void spvi_stages_free (spvi_core *c);
 /* sym_newton_problem's factor and solve */
 int spvi_stages_factor (void *ctx, const double *x, sym_counters *cnt);
 int spvi_stages_solve (void *ctx, double *b, sym_counters *cnt);
-/* out (d) = the p rows of node j's Jacobian (c->A, or the stages' J)
-   times dy (2d) */
+/* out (d) = the p rows of node j's Jacobian (c->A, or the stages' J
+   unless exact) times dy (2d) */
 void spvi_jac_p (spvi_core *c, int j, const double *dy, double *out);
 /* c->noise_q, noise_p from the stages' J (see predict.c) */
 void spvi_stages_noise (spvi_core *c, const double *qa, const double *pa);

@@ -31,7 +31,12 @@
 
    J is Df at the middle node of the iterate the matrix is made at: a
    simplified Newton whose matrix misses the nodes' own Jacobians by O(h),
-   so that its contraction is O(h^2). */
+   so that its contraction is O(h^2).  With a new matrix every solve
+   (exact), the node Jacobians come with the same calls, and each solve
+   is iterated on Newton's own matrix (spvi_matvec) with the stages as
+   its preconditioner, to round-off: a few products per correction, and
+   the correction is Newton's, whose quadratic error the stopping test
+   of newton.c's quad mode assumes. */
 #include "spvi.h"
 
 #include <complex.h>
@@ -69,6 +74,10 @@ struct spvi_stages {
   double *wcol;                 /* work: N (a column of M - I) */
   int *rows;                    /* work: N (its rows) */
   double *wv;                   /* work: 2d */
+  /* exact: c->A sized for the node Jacobians; work: the right side and
+     the residual (N each), the products' node values (4 d m) */
+  int a_full;
+  double *rb, *dyb;
 };
 
 /* Invert the m-by-m complex a (column-major) into ai by Gauss-Jordan
@@ -246,6 +255,8 @@ spvi_stages_free (spvi_core *c)
   sym_free (g->J);
   sym_free (g->z);
   sym_free (g->wv);
+  sym_free (g->rb);
+  sym_free (g->dyb);
   sym_free (g);
   c->sg = NULL;
 }
@@ -496,13 +507,46 @@ eval_jac (spvi_core *c, const double *x)
          : sym_jac (ev, c->tj[j], y, f0, g->J);
 }
 
+/* exact: the node Jacobians at x into c->A (allocated at the first
+   use), J the middle node's */
+static int
+exact_jac (spvi_core *c, const double *x)
+{
+  spvi_stages *g = c->sg;
+  const size_t nn = 2 * (size_t) c->d, m = (size_t) c->m;
+  if (! g->a_full)
+    {
+      double *A = sym_calloc (nn * nn * m, sizeof (double));
+      g->rb = sym_calloc (2 * (size_t) c->N, sizeof (double));
+      g->dyb = sym_calloc (2 * nn * m, sizeof (double));
+      if (! A || ! g->rb || ! g->dyb)
+        {
+          sym_free (A);
+          return SYM_ENOMEM;
+        }
+      sym_free (c->A);
+      c->A = A;
+      g->a_full = 1;
+    }
+  int st = spvi_node_jacobians (c, x);
+  if (! st)
+    memcpy (g->J, spvi_A (c, c->m / 2), nn * nn * sizeof (double));
+  return st;
+}
+
+int
+spvi_stages_dense (const spvi_core *c)
+{
+  return c->sg && ! c->sg->sparse && ! c->sg->whole;
+}
+
 int
 spvi_stages_factor (void *ctx, const double *x, sym_counters *cnt)
 {
   spvi_core *c = ctx;
   spvi_stages *g = c->sg;
   const double hh = 0.5 * c->h;
-  int st = eval_jac (c, x);
+  int st = c->exact ? exact_jac (c, x) : eval_jac (c, x);
   if (st)
     return st;
   c->h_mat = c->h;
@@ -621,10 +665,9 @@ schur_solve (spvi_stages *g, int i, int d, double hh, double *z, int k,
 }
 
 /* b <- M \ b by the stage systems (see the top) */
-int
-spvi_stages_solve (void *ctx, double *b, sym_counters *cnt)
+static int
+stages_apply (spvi_core *c, double *b, sym_counters *cnt)
 {
-  spvi_core *c = ctx;
   spvi_stages *g = c->sg;
   const int d = c->d, m = c->m, ns = g->ns;
   const size_t nn = 2 * (size_t) d;
@@ -685,6 +728,48 @@ spvi_stages_solve (void *ctx, double *b, sym_counters *cnt)
   return SYM_SUCCESS;
 }
 
+/* b <- M \ b; exact: M Newton's matrix of the node Jacobians, by the
+   stages' solves of the residuals of M x = b until the change is at
+   round-off.  One that does not contract (a J far from the nodes') ends
+   the iteration, and the solve's stopping test no longer takes its
+   corrections for Newton's (nw.quad off until the next matrix). */
+int
+spvi_stages_solve (void *ctx, double *b, sym_counters *cnt)
+{
+  spvi_core *c = ctx;
+  spvi_stages *g = c->sg;
+  if (! c->exact)
+    return stages_apply (c, b, cnt);
+  const int N = c->N;
+  double *b0 = g->rb, *r = g->rb + N, prev = INFINITY;
+  memcpy (b0, b, (size_t) N * sizeof (double));
+  int st = stages_apply (c, b, cnt);
+  for (int k = 0; ! st; k++)
+    {
+      spvi_matvec (c, b, r, g->dyb);
+      for (int i = 0; i < N; i++)
+        r[i] = b0[i] - r[i];
+      if ((st = stages_apply (c, r, cnt)))
+        break;
+      double nr = 0.0, nx = 0.0;
+      for (int i = 0; i < N; i++)
+        {
+          b[i] += r[i];
+          nr = fmax (nr, fabs (r[i]));
+          nx = fmax (nx, fabs (b[i]));
+        }
+      if (! (nr > SYM_SPVI_EXACT_EPS * DBL_EPSILON * nx))
+        break;
+      if (nr > 0.5 * prev || k + 1 == SYM_SPVI_EXACT_ITERS)
+        {
+          c->nw.quad = 0;
+          break;
+        }
+      prev = nr;
+    }
+  return st;
+}
+
 /* out (d values) = the p rows of node j's Jacobian times dy (2d) */
 void
 spvi_jac_p (spvi_core *c, int j, const double *dy, double *out)
@@ -692,7 +777,7 @@ spvi_jac_p (spvi_core *c, int j, const double *dy, double *out)
   const int d = c->d;
   const size_t nn = 2 * (size_t) d;
   const spvi_stages *g = c->sg;
-  if (g && g->sparse)
+  if (g && g->sparse && ! c->exact)
     {
       /* J's p rows only */
       const sym_csc *J = &g->Js;
@@ -704,7 +789,7 @@ spvi_jac_p (spvi_core *c, int j, const double *dy, double *out)
               out[J->rowind[e] - d] += J->val[e] * dy[l];
       return;
     }
-  const double *A = g ? g->J : spvi_A (c, j);
+  const double *A = g && ! c->exact ? g->J : spvi_A (c, j);
   for (int k = 0; k < d; k++)
     out[k] = 0.0;
   for (size_t l = 0; l < nn; l++)

@@ -21,7 +21,8 @@ rec_free (spvi_rec *r)
   sym_free (r->fe0);
   sym_free (r->fe1);
   sym_free (r->emis);
-  r->y0 = r->y1 = r->a = r->P = r->dq = NULL;
+  sym_free (r->cmp);
+  r->y0 = r->y1 = r->a = r->P = r->dq = r->cmp = NULL;
   r->D = r->fe0 = r->fe1 = r->emis = NULL;
 }
 
@@ -36,6 +37,7 @@ rec_init (spvi_rec *r, int d, int n, int m, int dense)
   r->P = sym_calloc ((size_t) m * d, sizeof (double));
   r->dq = sym_calloc ((size_t) d, sizeof (double));
   r->fe1 = sym_calloc (2 * (size_t) d, sizeof (double));
+  r->cmp = sym_calloc (2 * (size_t) d, sizeof (double));
   if (dense)
     {
       r->D = sym_calloc ((size_t) (m + 3) * 2 * d, sizeof (double));
@@ -43,7 +45,7 @@ rec_init (spvi_rec *r, int d, int n, int m, int dense)
       r->emis = sym_calloc (2 * (size_t) d, sizeof (double));
     }
   if (! r->y0 || ! r->y1 || ! r->a || ! r->P || ! r->dq || ! r->fe1
-      || (dense && (! r->D || ! r->fe0 || ! r->emis)))
+      || ! r->cmp || (dense && (! r->D || ! r->fe0 || ! r->emis)))
     {
       rec_free (r);
       return SYM_ENOMEM;
@@ -294,6 +296,25 @@ solve_companion (spvi_state *s, sym_eval *ev, double t, double h,
   return SYM_SUCCESS;
 }
 
+/* A fixed step's end y + inc summed with the rounding of y carried (y
+   the last step's end; else none): the round-off of many steps then
+   does not add up in the phase */
+static void
+compensate (spvi_state *s, double t, const double *y)
+{
+  const int nn = 2 * s->d;
+  spvi_rec *tr = s->trial;
+  const spvi_rec *cu = s->cur;
+  const int carry = s->have_cur && cu->tend == t
+                    && memcmp (cu->y1, y, (size_t) nn * sizeof (double)) == 0;
+  for (int i = 0; i < nn; i++)
+    {
+      const double e = (carry ? cu->cmp[i] : 0.0) + s->lo.inc[i];
+      tr->y1[i] = y[i] + e;
+      tr->cmp[i] = (y[i] - tr->y1[i]) + e;
+    }
+}
+
 /* A fixed step is converged to round-off.  An adaptive one advances with
    the companion, so the method's solution only enters the estimate (and
    the dense output within the step): its solve stops at SYM_SPVI_EST_LO
@@ -330,6 +351,8 @@ spvi_step (void *state, sym_eval *ev, double t, double h, double tend,
   const double tol_hi = fmax (tol_rf, SYM_SPVI_EST_HI * w / S.all);
   if ((st = solve_method (s, ev, t, h, yerr != NULL, tol_lo, &S)))
     return st;
+  if (! yerr)
+    compensate (s, t, y);
   memcpy (tr->a, s->lo.x, (size_t) (n - 1) * d * sizeof (double));
   memcpy (tr->P, s->lo.x + (size_t) (n - 1) * d,
           (size_t) m * d * sizeof (double));
