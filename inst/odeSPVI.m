@@ -38,7 +38,9 @@
 ##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
 ## @code{odeSE}; @var{sol} also has order (the order used), Q_DoFs and
-## Nodes.
+## Nodes.  A @var{sol} as @var{y0} continues or retraces its run (see
+## @code{odeSE}): @code{odeSPVI (fcn, [T 0], sol)} takes a reversible
+## run back to y0.
 ##
 ## The options a user sets first:
 ##

@@ -36,7 +36,9 @@
 ## orbit's pericentre) and the whole run stays time-reversible.
 ##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
-## @code{odeSE}; @var{sol} also has method and order.
+## @code{odeSE}; @var{sol} also has method and order.  A @var{sol} as
+## @var{y0} continues or retraces its run (see @code{odeSE}):
+## @code{odeSV (fcn, [T 0], sol)} takes a reversible run back to y0.
 ##
 ## The options a user sets first:
 ##
