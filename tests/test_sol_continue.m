@@ -179,6 +179,7 @@
 %!error <odeSPVI: Y0 is the sol of a run of odeSV> odeSPVI (g, [1 2], sv)
 %!error <odeSV: with a sol as Y0, TSPAN\(1\) must be its end> odeSV (g, [0.9 2], sv)
 %!error <odeSV: with a sol as Y0, TSPAN\(1\) must be its end> odeSV (g, [0 2], sv)
-%!error <odeSV: Y0 must be a numeric vector> odeSV (g, [1 2], struct ("x", 1))
+%!error <odeSV: Y0 must be a non-empty real numeric vector \[q0; p0\] or the sol of a run of odeSV, got 1x1 struct> odeSV (g, [1 2], struct ("x", 1))
+%!error <odeSPVI: Y0 has no field y> odeSPVI (g, [0 1], struct ("symplectic_restart", true))
 %!error <odeSE: TSPAN must be a real vector> odeSE (g, 1, odeSE (g, [0 1], [1; 0]))
 %!error <odeSV: Y0 is a sol with no rows> odeSV (g, [1 2], struct ("x", [0 1], "y", ones (2, 2, 2), "solver", "odeSV"))

@@ -19,8 +19,8 @@
 function varargout = __sol_extend__ (solver, gateway, nout, fcn, tspan, sol, varargin)
   if (! (isfield (sol, "solver") && isfield (sol, "x") && isfield (sol, "y")))
     error ("Octave:invalid-input-arg",
-           "%s: Y0 must be a numeric vector [q0; p0], or the sol of a run of %s (a struct with fields x, y, solver)",
-           solver, solver);
+           "%s: Y0 must be a non-empty real numeric vector [q0; p0] or the sol of a run of %s, got %dx%d struct (a sol has the fields x, y and solver)",
+           solver, solver, rows (sol), columns (sol));
   endif
   if (! strcmp (sol.solver, solver))
     error ("Octave:invalid-input-arg",
