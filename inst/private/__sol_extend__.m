@@ -89,7 +89,7 @@ function varargout = __sol_extend__ (solver, gateway, nout, fcn, tspan, sol, var
         k0 = r.k - 1;
         g0 = r.t0;
       endif
-    elseif (r.h == 0 && ! inside && all (r.rho > 0) && (! back || numel (x) >= 3))
+    elseif (r.h == 0 && ! inside && r.rho(2 - back) > 0)
       from_prev = true;
       rho0 = r.rho(2 - back);
     endif
