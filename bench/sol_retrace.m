@@ -14,7 +14,9 @@ so = symplecticset (base, "SecondOrder", "on");
 sc = symplecticset (so, "CompensatedSummation", "on");
 runs = {"odeSV SecondOrder", @odeSV, acc, so;
         "odeSV SecondOrder, compensated", @odeSV, acc, sc;
-        "odeSPVI (4,3)", @odeSPVI, kep, base};
+        "odeSPVI (4,3)", @odeSPVI, kep, base;
+        "odeSPVI (4,3), NewtonTol 1e-16", @odeSPVI, kep, ...
+        symplecticset(base, "NewtonTol", 1e-16)};
 printf ("%-32s %7s %10s %10s %7s %7s\n", "run", "steps", "from sol", "from end", "fwd s", "back s");
 for i = 1:rows (runs)
   [name, solver, f, o] = runs{i, :};
