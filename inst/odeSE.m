@@ -44,11 +44,11 @@
 ## @var{y0} may be the @var{sol} of a run of the same solver, with
 ## @var{tspan}(1) its end: the run goes on beyond it, or back.  It starts
 ## at the step point before the last step (shortened, maybe, to end
-## there), fixed steps on the same grid (a continued run equals the run
-## over the whole span), reversible ones with the densities @var{sol}
-## keeps in its field restart (a run back retraces them to y0).  Options not given are those
-## of that run; the @var{sol} returned is the two joined (a run back:
-## its own, from the end point).
+## there), fixed steps on the same grid (a continued run is the run over
+## the whole span, explicit steps to the bit), reversible ones with the
+## densities @var{sol} keeps in its field restart (a run back retraces
+## them to y0).  Options not given are those of that run; the @var{sol}
+## returned is the two joined (a run back: its own, from the end point).
 ##
 ## The options a user sets first:
 ##
