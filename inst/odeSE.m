@@ -41,6 +41,15 @@
 ## @code{ode45} (x, y, solver, xe, ye, ie, stats).  With no output the
 ## solution is plotted with @code{odeplot}.
 ##
+## @var{y0} may be the @var{sol} of a run of the same solver, with
+## @var{tspan}(1) its end: the run goes on beyond it, or back.  It starts
+## at the step point before the last step (shortened, maybe, to end
+## there), fixed steps on the same grid (a continued run is the run over
+## the whole span, explicit steps to the bit), reversible ones with the
+## densities @var{sol} keeps in its field restart (a run back retraces
+## them to y0).  Options not given are those of that run; the @var{sol}
+## returned is the two joined (a run back: its own, from the end point).
+##
 ## The options a user sets first:
 ##
 ## @table @code
@@ -106,7 +115,12 @@ function varargout = odeSE (varargin)
   if (nargin >= 1 && isa (varargin{1}, "symfcn"))
     varargin{1} = __symfcn_gateway__ (varargin{1});
   endif
-  if (nargin >= 4 && isstruct (varargin{4})
+  if (nargin >= 3 && isstruct (varargin{3})
+      && ! isfield (varargin{3}, "symplectic_restart"))
+    ## a sol as Y0: continued or retraced (private/__sol_extend__.m)
+    [varargout{1:nargout}] = __sol_extend__ ("odeSE", @__odeSE__, nargout,
+                                             varargin{:});
+  elseif (nargin >= 4 && isstruct (varargin{4})
       && __ensemble_parallel__ ("odeSE", varargin{4}))
     [varargout{1:nargout}] = __ensemble_parallel__ ("odeSE", @__odeSE__,
                                                     nargout, varargin{:});

@@ -36,7 +36,9 @@
 ## orbit's pericentre) and the whole run stays time-reversible.
 ##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
-## @code{odeSE}; @var{sol} also has method and order.
+## @code{odeSE}; @var{sol} also has method and order.  A @var{sol} as
+## @var{y0} continues or retraces its run (see @code{odeSE}):
+## @code{odeSV (fcn, [T 0], sol)} takes a reversible run back to y0.
 ##
 ## The options a user sets first:
 ##
@@ -115,7 +117,12 @@ function varargout = odeSV (varargin)
   if (nargin >= 1 && isa (varargin{1}, "symfcn"))
     varargin{1} = __symfcn_gateway__ (varargin{1});
   endif
-  if (nargin >= 4 && isstruct (varargin{4})
+  if (nargin >= 3 && isstruct (varargin{3})
+      && ! isfield (varargin{3}, "symplectic_restart"))
+    ## a sol as Y0: continued or retraced (private/__sol_extend__.m)
+    [varargout{1:nargout}] = __sol_extend__ ("odeSV", @__odeSV__, nargout,
+                                             varargin{:});
+  elseif (nargin >= 4 && isstruct (varargin{4})
       && __ensemble_parallel__ ("odeSV", varargin{4}))
     [varargout{1:nargout}] = __ensemble_parallel__ ("odeSV", @__odeSV__,
                                                     nargout, varargin{:});

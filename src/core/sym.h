@@ -179,6 +179,14 @@ typedef struct {
   int sep_broken;             /* Separable steps found f not separable,
                                  first at sep_broken_t (sym_sep_check) */
   double sep_broken_t;
+  /* where a later run can go on from the end of this one (a sol given
+     as Y0): fixed steps of restart_h from the grid's origin restart_t0,
+     the last row in step restart_k (at its end, or inside it when an
+     event ended the run; k0 counted); reversible steps, the densities of
+     the step before the last and of the last (0 where there was none) */
+  double restart_h, restart_t0;
+  long restart_k;
+  double restart_rho[2];
 } sym_stats;
 
 /* The system as the core evaluates it: the callbacks in use (the user's
@@ -446,6 +454,14 @@ typedef struct {
      ends the run.  Reversible for a symmetric method: the steps from the
      end back, the first one the forward run's last, retrace them. */
   int step_control;
+  /* a run that goes on from a step point of an earlier one: fixed steps
+     (h_fixed, nsteps_fixed 0), k0 > 0 steps taken from the grid's origin
+     grid_t0, t0 = grid_t0 + k0 h as the steps round it (else
+     SYM_EBADINPUT), the steps on the same grid and their number counted
+     from grid_t0; reversible, rho0 > 0 the first step's density (in
+     place of h0) */
+  long k0;
+  double grid_t0, rho0;
   sym_density_fn density;
   void *density_user;
   long max_steps;      /* 0: no limit */

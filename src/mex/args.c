@@ -139,6 +139,22 @@ symmex_read_args (const char *name, int nlhs, int nrhs,
   a->extra = prhs + 3 + has_opts;
   const mxArray *ens = a->opts && mxIsStruct (a->opts)
                        ? symmex_field (name, a->opts, "Ensemble") : NULL;
-  read_y0 (name, prhs[2], ens ? symmex_on_off (name, ens, "Ensemble") : 0,
-           a);
+  const mxArray *y0 = prhs[2];
+  a->k0 = 0;
+  a->grid_t0 = a->rho0 = 0;
+  if (mxIsStruct (y0) && mxGetField (y0, 0, "symplectic_restart"))
+    {
+      /* from the front ends (a sol given as Y0): the state and where the
+         steps go on from; checked by the core against TSPAN */
+      const mxArray *k = mxGetField (y0, 0, "k"), *g = mxGetField (y0, 0, "t0"),
+                    *rho = mxGetField (y0, 0, "rho");
+      a->k0 = k && mxIsDouble (k) && ! mxIsEmpty (k) ? (long) mxGetScalar (k) : 0;
+      a->grid_t0 = g && mxIsDouble (g) && ! mxIsEmpty (g) ? mxGetScalar (g) : 0;
+      a->rho0 = rho && mxIsDouble (rho) && ! mxIsEmpty (rho)
+                ? mxGetScalar (rho) : 0;
+      y0 = mxGetField (y0, 0, "y");
+      if (! y0)
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Y0 has no field y", name);
+    }
+  read_y0 (name, y0, ens ? symmex_on_off (name, ens, "Ensemble") : 0, a);
 }

@@ -37,6 +37,9 @@ driver_opts (const symmex_args *a, const symmex_opts *o, symmex_ctx *c,
   d->max_steps = o->max_steps;
   d->step_control = o->reversible ? SYM_CONTROL_REVERSIBLE
                     : SYM_CONTROL_ERROR;
+  d->k0 = a->k0;
+  d->grid_t0 = a->grid_t0;
+  d->rho0 = a->rho0;
   d->density = o->densityfcn ? symmex_cb_density : NULL;
   d->density_user = c;
   d->nevents = c->nevents;
@@ -165,4 +168,7 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   if (o.stats)
     symmex_print_stats (&st, jac_used, c);
   symmex_outputs (m, own, c, &st, jac_used, nlhs, plhs);
+  if (nlhs == 1 && (status == SYM_DONE || status == SYM_STOP_EVENT
+                    || status == SYM_STOP_OUTPUT))
+    symmex_sol_restart (plhs[0], &st, a.opts);
 }

@@ -452,3 +452,19 @@ symmex_event_plhs (int nlhs, mxArray *plhs[], mxArray *te, mxArray *ye,
   else
     mxDestroyArray (ie);
 }
+
+void
+symmex_sol_restart (mxArray *sol, const sym_stats *st, const mxArray *opts)
+{
+  const char *names[] = { "h", "t0", "k", "rho", "options" };
+  mxArray *r = mxCreateStructMatrix (1, 1, 5, names);
+  mxSetField (r, 0, "h", mxCreateDoubleScalar (st->restart_h));
+  mxSetField (r, 0, "t0", mxCreateDoubleScalar (st->restart_t0));
+  mxSetField (r, 0, "k", mxCreateDoubleScalar ((double) st->restart_k));
+  mxSetField (r, 0, "rho", row_of (st->restart_rho, 2));
+  mxSetField (r, 0, "options", opts && mxIsStruct (opts)
+                               ? mxDuplicateArray (opts)
+                               : mxCreateDoubleMatrix (0, 0, mxREAL));
+  mxAddField (sol, "restart");
+  mxSetField (sol, 0, "restart", r);
+}

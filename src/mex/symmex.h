@@ -86,6 +86,11 @@ typedef struct {
   const mxArray *opts;        /* OPTS, or NULL */
   int nextra;                 /* P1, ... */
   const mxArray *const *extra;
+  /* Y0 a struct with the field symplectic_restart (the front ends' form
+     of a sol given as Y0): its y, and where the steps go on from
+     (sym_driver_opts k0, grid_t0, rho0) */
+  long k0;
+  double grid_t0, rho0;
 } symmex_args;
 
 /* FCN, TSPAN, Y0, OPTS and the extra parameters; errors name the solver */
@@ -327,6 +332,10 @@ void symmex_energy (symmex_ctx *c);
 /* OutputFcn (t, y(OutputSel), flag, extras...): its stop flag */
 int symmex_outputfcn (symmex_ctx *c, const double *t, int nt,
                       const double *y, const char *flag);
+/* sol.restart: what a run given sol as Y0 goes on from (the steps'
+   grid or densities, st's restart_*) and the OPTS of this run */
+void symmex_sol_restart (mxArray *sol, const sym_stats *st,
+                         const mxArray *opts);
 /* te, ye, ie into plhs[2..] as far as nlhs asks (the others destroyed) */
 void symmex_event_plhs (int nlhs, mxArray *plhs[], mxArray *te,
                         mxArray *ye, mxArray *ie);

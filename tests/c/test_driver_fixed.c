@@ -9,6 +9,7 @@
 #include "testutil.h"
 
 #include <float.h>
+#include <math.h>
 #include <string.h>
 
 /* fixed step, h not dividing the interval: the last step ends on tf */
@@ -309,6 +310,96 @@ scenario_smaller_step_where_none (void)
     }
 }
 
+/* A run that goes on from step k0 of an earlier run's grid (a sol as Y0):
+   from the step point before the earlier run's shortened last step, its
+   rows are those of the run over the whole span, to the bit; the stats
+   say where to go on from.  A reversible run started with the density
+   the earlier run's last step had takes the whole run's next step. */
+static void
+scenario_continue_on_grid (void)
+{
+  static double tw[4000], yw[4000][2];
+  drv_run r;
+  double y0[2] = { 1, 0 };
+  int st, nw;
+  drv_setup (&r);
+  r.o.h_fixed = 0.1;
+  r.o.tf = 23.45;
+  st = drv_integrate (&r, &drv_mid_type, y0);
+  nw = SINK.nrows;
+  memcpy (tw, SINK.t, sizeof (double) * (size_t) nw);
+  memcpy (yw, SINK.y, sizeof (double) * 2 * (size_t) nw);
+  drv_setup (&r);
+  r.o.h_fixed = 0.1;
+  r.o.tf = 10.05;
+  st = drv_integrate (&r, &drv_mid_type, y0);
+  CHECK (st == SYM_DONE && r.stats.restart_h == 0.1
+         && r.stats.restart_t0 == 0 && r.stats.restart_k == 101
+         && SINK.nrows == 102, "restart h %g t0 %g k %ld, rows %d",
+         r.stats.restart_h, r.stats.restart_t0, r.stats.restart_k,
+         SINK.nrows);
+  double yk[2] = { SINK.y[100][0], SINK.y[100][1] };
+  const double tk = SINK.t[100];
+  drv_setup (&r);
+  r.o.h_fixed = 0.1;
+  r.o.t0 = tk;
+  r.o.tf = 23.45;
+  r.o.k0 = 100;
+  r.o.grid_t0 = 0;
+  st = drv_integrate (&r, &drv_mid_type, yk);
+  int same = st == SYM_DONE && SINK.nrows == nw - 100;
+  for (int i = 0; same && i < SINK.nrows; i++)
+    same = SINK.t[i] == tw[100 + i] && SINK.y[i][0] == yw[100 + i][0]
+           && SINK.y[i][1] == yw[100 + i][1];
+  CHECK (same, "continued on the grid: the whole run's rows (%d of %d)",
+         SINK.nrows, nw - 100);
+  CHECK (r.stats.restart_k == nw - 1, "k counted from the grid's origin");
+  /* not on the grid, or not fixed steps: bad input */
+  for (int k = 0; k < 3; k++)
+    {
+      drv_setup (&r);
+      r.o.h_fixed = k == 2 ? 0 : 0.1;
+      r.o.nsteps_fixed = k == 1 ? 50 : 0;
+      r.o.t0 = k == 0 ? nextafter (tk, 0) : tk;
+      r.o.tf = 23.45;
+      r.o.k0 = 100;
+      st = drv_integrate (&r, &drv_mid_type, yk);
+      CHECK (st == SYM_EBADINPUT, "k0 with %s: %s", k == 0 ? "t0 off the "
+             "grid" : k == 1 ? "TimeStepNumber" : "adaptive steps",
+             sym_status_name (st));
+    }
+  /* reversible: the density of the last step */
+  drv_setup (&r);
+  r.o.step_control = SYM_CONTROL_REVERSIBLE;
+  r.o.tol.rtol = 1e-4;
+  r.o.tf = 20;
+  st = drv_integrate (&r, &drv_mid_type, y0);
+  nw = SINK.nrows;
+  memcpy (tw, SINK.t, sizeof (double) * (size_t) (nw < 4000 ? nw : 4000));
+  drv_setup (&r);
+  r.o.step_control = SYM_CONTROL_REVERSIBLE;
+  r.o.tol.rtol = 1e-4;
+  st = drv_integrate (&r, &drv_mid_type, y0);
+  const int n = SINK.nrows;
+  CHECK (st == SYM_DONE && n >= 4 && n < 4000 && r.stats.restart_rho[0] > 0
+         && r.stats.restart_rho[1] > 0, "reversible: rows %d, rho %g %g", n,
+         r.stats.restart_rho[0], r.stats.restart_rho[1]);
+  const double rho = r.stats.restart_rho[1];
+  double ym[2] = { SINK.y[n - 2][0], SINK.y[n - 2][1] };
+  drv_setup (&r);
+  r.o.step_control = SYM_CONTROL_REVERSIBLE;
+  r.o.tol.rtol = 1e-4;
+  r.o.t0 = tw[n - 2];
+  r.o.tf = 20;
+  r.o.rho0 = rho;
+  st = drv_integrate (&r, &drv_mid_type, ym);
+  CHECK (st == SYM_DONE && SINK.nrows > 2
+         && fabs (SINK.t[1] - tw[n - 1]) <= 1e-12 * 20
+         && fabs (SINK.t[2] - tw[n]) <= 1e-12 * 20,
+         "reversible, rho0: the whole run's steps (%.17g %.17g)",
+         SINK.t[1], tw[n - 1]);
+}
+
 int
 main (void)
 {
@@ -324,5 +415,6 @@ main (void)
   scenario_output_stop ();
   scenario_bad_input ();
   scenario_smaller_step_where_none ();
+  scenario_continue_on_grid ();
   return tu_finish ("test_driver_fixed");
 }

@@ -25,7 +25,7 @@ typedef struct {
   double *ytyp;            /* the sizes of y's components (sym_eval) */
   /* fixed steps */
   long nfixed, k;
-  double hfix, tend;
+  double hfix, tend, tgrid;   /* tgrid: the origin of the steps' grid */
   /* adaptive steps */
   double h, hmax;
   int user_hmax;
@@ -38,6 +38,7 @@ typedef struct {
      (rho_{n+1/2}), f at a step point (n) */
   int reversible;
   double eps, rho_half;
+  double rho_prev;         /* the density of the step before (restart) */
   double *fn;
   long jac_checked_at;     /* nsteps at the last sym_jac_check */
   int jac_agreed;          /* its checks that found Df right */

@@ -63,6 +63,13 @@ check_input (const sym_system *sys, const sym_driver_opts *o, int fixed)
       return SYM_EBADINPUT;
   if (o->ntout > 2 && (! o->tout || o->tout[0] != o->t0))
     return SYM_EBADINPUT;
+  /* going on from step k0 of a grid: t0 must be its point, as the
+     schedule rounds it, for the steps to fall on the same grid */
+  if (o->k0 > 0
+      && (! fixed || o->nsteps_fixed > 0 || ! (o->h_fixed > 0)
+          || o->t0 != o->grid_t0 + (o->tf > o->t0 ? 1.0 : -1.0)
+                      * o->h_fixed * (double) o->k0))
+    return SYM_EBADINPUT;
   return SYM_SUCCESS;
 }
 
@@ -148,9 +155,20 @@ run_start (sym_run *r)
   if (r->ne && o->events && (st = sym_run_events (r, r->t, r->y, r->vold)))
     return st < 0 ? st : SYM_ECALLBACK;
   r->tend = o->tf;
+  r->tgrid = o->t0;
   if (r->fixed)
     {
-      if (o->nsteps_fixed > 0)
+      if (o->k0 > 0)
+        {
+          /* the steps and their number as for a run from the grid's origin */
+          sym_driver_opts g = *o;
+          g.t0 = o->grid_t0;
+          r->tgrid = o->grid_t0;
+          r->hfix = o->h_fixed;
+          r->nfixed = sym_fixed_steps (&g);
+          r->k = o->k0;
+        }
+      else if (o->nsteps_fixed > 0)
         {
           r->nfixed = o->nsteps_fixed;
           r->hfix = o->h_fixed > 0 ? o->h_fixed
@@ -196,7 +214,7 @@ schedule (sym_run *r, double *hs, double *tnew, int *last)
       if (r->k >= r->nfixed)
         return 1;
       *last = r->k == r->nfixed - 1;
-      *tnew = *last ? r->tend : r->o->t0 + r->dir * r->hfix * (double) (r->k + 1);
+      *tnew = *last ? r->tend : r->tgrid + r->dir * r->hfix * (double) (r->k + 1);
       /* each step is h itself, ending at t0 + k h rounded once, so that
          every step is the same map at any t; the last takes what is left
          when h does not fit the span beyond the round-off of t */
@@ -446,6 +464,11 @@ sym_integrate (const sym_stepper_type *type, const sym_system *sys,
     {
       *stats = r.ev.st;
       stats->t_reached = r.t;
+      stats->restart_h = r.fixed ? r.hfix : 0;
+      stats->restart_t0 = r.tgrid;
+      stats->restart_k = r.k;
+      stats->restart_rho[0] = r.reversible ? r.rho_prev : 0;
+      stats->restart_rho[1] = r.reversible ? r.rho_half : 0;
       if (r.state)
         stats->order = type->order (r.state, NULL);
     }

@@ -75,6 +75,11 @@ sym_rev_start (sym_run *r)
   r->eps = fmin (pow (o->tol.rtol, 1.0 / (p > 0 ? p : 1)), SYM_REV_EPS_MAX);
   r->user_hmax = o->hmax > 0;
   r->hmax = o->hmax;
+  if (o->rho0 > 0)
+    {
+      r->rho_half = o->rho0;
+      return SYM_SUCCESS;
+    }
   if (o->h0 > 0)
     {
       r->rho_half = isinf (o->h0) ? 0 : r->eps / o->h0;
@@ -109,6 +114,7 @@ sym_rev_next (sym_run *r)
   int st = density (r, r->t, r->y, 1, &rho);
   if (st)
     return fatal (st);
+  r->rho_prev = r->rho_half;
   r->rho_half = fmax (2.0 * rho - r->rho_half, SYM_REV_FLOOR * rho);
   return SYM_SUCCESS;
 }
