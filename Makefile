@@ -25,6 +25,7 @@
 #                       pkg test and demo odeSPVI (tests/check_installed.sh)
 #   make bench          deps and all, then bench/run_benchmarks.m (RESULTS.md),
 #                       bench/run_methods.m (METHODS.md, methods-*.png),
+#                       bench/run_verletform.m (VERLETFORM.md),
 #                       bench/run_reversible.m (REVERSIBLE.md, its PNG),
 #                       bench/run_large.m (LARGE.md),
 #                       bench/run_ensemble.m (ENSEMBLE.md) and bench-core
@@ -135,6 +136,7 @@ check-memory: deps-memory
 bench: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_benchmarks.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_methods.m
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" bench/run_verletform.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_reversible.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_large.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_ensemble.m

@@ -67,9 +67,12 @@
 ## number is the order); splitting methods, for a separable H:
 ## @qcode{"ruth3"}, @qcode{"candyrozmus4"}, @qcode{"mclachlan4"},
 ## @qcode{"blanesmoan6"}.  Fixed or reversible steps.
+## @item VerletForm
+## @qcode{"velocity"} (kick-drift-kick, default) or @qcode{"position"}
+## (drift-kick-drift): the inner Verlet step, with Separable or SecondOrder.
 ## @item CompensatedSummation
-## @qcode{"on"}: explicit steps sum their updates with compensation, for
-## runs of a million steps and more.
+## Explicit steps sum their updates with compensation: on by default for
+## every Method but Verlet's; @qcode{"off"} turns it off.
 ## @item Jacobian, HamiltonianHessFcn, JPattern
 ## Other sources of Newton's matrix, as in @code{odeSE}.
 ## @item Vectorized
