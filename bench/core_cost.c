@@ -170,6 +170,68 @@ spvi_time (int K, long nsteps, int newmat, double *states)
   return best;
 }
 
+/* the last row of a run */
+static int
+last_row (double t, const double *y, void *user)
+{
+  (void) t;
+  memcpy (user, y, 4 * sizeof (double));
+  return 0;
+}
+
+/* (5, 4) on Kepler e = 0.6 over 200 periods in 113137 fixed steps (the
+   problem of the plain Gauss loop, bench/gauss_loop.c), no batch callback:
+   the least time per step of ROUNDS runs, the states per step and the end
+   point's distance from y0 */
+static double
+spvi54_time (int nonlinear, int system, double *states, double *err)
+{
+  sym_system sys;
+  memset (&sys, 0, sizeof sys);
+  sys.dim = 2;
+  sys.rhs = kepler;
+  sym_spvi_opts so;
+  memset (&so, 0, sizeof so);
+  so.q_dofs = 5;
+  so.nodes = 4;
+  so.nonlinear = nonlinear;
+  so.system = system;
+  sym_method_opts mo;
+  memset (&mo, 0, sizeof mo);
+  mo.own = &so;
+  const long nsteps = 113137;
+  const double e = 0.6, y0[4] = { 1.0 - e, 0.0, 0.0, sqrt ((1.0 + e) / (1.0 - e)) };
+  double best = INFINITY;
+  for (int r = 0; r < ROUNDS; r++)
+    {
+      sym_driver_opts d;
+      memset (&d, 0, sizeof d);
+      d.tf = 400.0 * PI;
+      d.h_fixed = d.tf / nsteps;
+      d.refine = 1;
+      double y[4];
+      d.output = last_row;
+      d.output_user = y;
+      nstates = 0;
+      const double t0 = now ();
+      const int ok = sym_integrate (sym_step_spvi, &sys, &mo, &d, y0, NULL)
+                     == SYM_DONE;
+      const double t = (now () - t0) / nsteps;
+      if (! ok)
+        {
+          fprintf (stderr, "core_cost: a (5, 4) run failed\n");
+          exit (1);
+        }
+      best = t < best ? t : best;
+      *states = (double) nstates / nsteps;
+      double e2 = 0.0;
+      for (int i = 0; i < 4; i++)
+        e2 += (y[i] - y0[i]) * (y[i] - y0[i]);
+      *err = sqrt (e2);
+    }
+  return best;
+}
+
 int
 main (int argc, char **argv)
 {
@@ -231,6 +293,25 @@ main (int argc, char **argv)
                  modes[m].name, 1e6 * t, states);
         fflush (f);
       }
+
+  fprintf (f, "\n## odeSPVI (5, 4), Kepler e = 0.6, 200 periods, 113137 "
+           "fixed steps, C callback\n\n"
+           "NonlinearSolver and NewtonSystem; no batch callback, so Newton "
+           "keeps its matrix (\"kept\").\n\n"
+           "| NonlinearSolver | NewtonSystem | us per step | states of f "
+           "per step | end error |\n|---|---|---|---|---|\n");
+  const struct { const char *nl, *sy; int n, s; } nls[] = {
+    { "newton", "full", SYM_NONLINEAR_NEWTON, SYM_SYSTEM_FULL },
+    { "newton", "stages", SYM_NONLINEAR_NEWTON, SYM_SYSTEM_STAGES },
+    { "fixedpoint", "(stages)", SYM_NONLINEAR_FIXEDPOINT, SYM_SYSTEM_AUTO } };
+  for (size_t i = 0; i < sizeof nls / sizeof nls[0]; i++)
+    {
+      double states = 0.0, err = 0.0;
+      const double t = spvi54_time (nls[i].n, nls[i].s, &states, &err);
+      fprintf (f, "| %s | %s | %.3f | %.1f | %.2e |\n", nls[i].nl, nls[i].sy,
+               1e6 * t, states, err);
+      fflush (f);
+    }
   if (f != stdout)
     fclose (f);
   return 0;

@@ -66,6 +66,9 @@
 ## @item NewtonMatrix, NewtonSystem
 ## How Newton's matrix is kept and its systems solved: @qcode{"auto"}
 ## (default) chooses; see the user guide.
+## @item NonlinearSolver
+## @qcode{"newton"} (default), @qcode{"fixedpoint"} (no Jacobian: for
+## non-stiff problems; Newton where it fails) or @qcode{"auto"}.
 ## @item Events, OutputFcn, OutputSel, Refine, Stats
 ## As in @code{ode45}, on the method's own dense output.
 ## @item Hamiltonian, Dense, Ensemble, Parallel

@@ -63,6 +63,11 @@
 ## @code{odeSPVI}: how Newton's matrix is kept (@qcode{"kept"},
 ## @qcode{"new"}) and its systems solved (@qcode{"full"},
 ## @qcode{"stages"}).  Default @qcode{"auto"}.
+## @item NonlinearSolver
+## @code{odeSPVI} with Q_DoFs = Nodes + 1: the step's equations by Newton
+## (@qcode{"newton"}, default), by fixed-point iteration with Newton where
+## it fails (@qcode{"fixedpoint"}), or by fixed point until it is slow
+## (@qcode{"auto"}).
 ## @item MaxSteps
 ## Largest number of steps of a run.  Default: no limit.
 ## @item Hamiltonian
@@ -107,7 +112,7 @@ function opts = symplecticset (varargin)
                        "SecondOrder", "Method", "CompensatedSummation", ...
                        "VerletForm", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
-                       "NewtonSystem", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
+                       "NewtonSystem", "NonlinearSolver", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
                        "StepDensityFcn", "Ensemble", "Parallel"};
   persistent odeset_fields = fieldnames (odeset ());
 
@@ -129,6 +134,7 @@ function opts = symplecticset (varargin)
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");
     printf ("       NewtonMatrix:  {[\"auto\"], \"kept\", \"new\"}\n");
     printf ("       NewtonSystem:  {[\"auto\"], \"full\", \"stages\"}\n");
+    printf ("    NonlinearSolver:  {[\"newton\"], \"fixedpoint\", \"auto\"} (odeSPVI)\n");
     printf ("           MaxSteps:  integer, >0, [] (no limit)\n");
     printf ("        Hamiltonian:  function handle, []\n");
     printf ("              Dense:  {[\"off\"], \"on\"}\n");

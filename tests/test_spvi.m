@@ -556,3 +556,33 @@
 %! endfor
 %! assert (s{1}.stats.nnewton <= s{2}.stats.nnewton);
 %! assert (s{1}.stats.nfevals <= s{2}.stats.nfevals);
+
+%!test
+%! ## NonlinearSolver: the fixed point solves the same equations as Newton
+%! ## (results to round-off); on a stiff step it falls back to Newton
+%! e = 0.6; y0 = [1-e; 0; 0; sqrt((1+e)/(1-e))];
+%! kep = @(t, y) [y(3:4); -y(1:2) / norm(y(1:2))^3];
+%! o = symplecticset ("Q_DoFs", 5, "Nodes", 4, "TimeStepSize", 2*pi/200);
+%! sn = odeSPVI (kep, [0 4*pi], y0, o);
+%! for nls = {"fixedpoint", "auto"}
+%!   sf = odeSPVI (kep, [0 4*pi], y0, symplecticset (o, "NonlinearSolver", nls{1}));
+%!   assert (sf.y, sn.y, 1e-12);
+%! endfor
+%! ## adaptive steps too
+%! oa = symplecticset ("RelTol", 1e-8, "AbsTol", 1e-8);
+%! sa = odeSPVI (kep, [0 2*pi], y0, symplecticset (oa, "NonlinearSolver", "fixedpoint"));
+%! assert (sa.y(:,end), y0, 1e-6);
+%! ## omega h = 4: the fixed point diverges; Newton solves those steps
+%! w = 40; f = @(t, y) [y(2); -w^2 * y(1)];
+%! os = symplecticset ("TimeStepSize", 0.1, "Nodes", 3);
+%! s0 = odeSPVI (f, [0 5], [1; 0], os);
+%! for nls = {"fixedpoint", "auto"}
+%!   s1 = odeSPVI (f, [0 5], [1; 0], symplecticset (os, "NonlinearSolver", nls{1}));
+%!   assert (s1.y, s0.y, 1e-12);
+%! endfor
+%!error <odeSPVI: NonlinearSolver "fixedpoint" needs Q_DoFs = Nodes \+ 1>
+%! odeSPVI (@(t, y) [y(2); -y(1)], [0 1], [1; 0], symplecticset ("Q_DoFs", 3, "Nodes", 3, "NonlinearSolver", "fixedpoint", "TimeStepSize", 0.1));
+%!error <odeSPVI: NonlinearSolver "auto" iterates by stages>
+%! odeSPVI (@(t, y) [y(2); -y(1)], [0 1], [1; 0], symplecticset ("NewtonSystem", "full", "NonlinearSolver", "auto", "TimeStepSize", 0.1));
+%!error <NonlinearSolver>
+%! odeSPVI (@(t, y) [y(2); -y(1)], [0 1], [1; 0], symplecticset ("NonlinearSolver", "picard", "TimeStepSize", 0.1));

@@ -397,8 +397,15 @@ typedef struct {
   int newton_matrix;
   int system;
   int sparse;
+  int nonlinear;   /* SYM_NONLINEAR_*: the stage equations by Newton, by
+                      fixed-point iteration falling back to Newton on a
+                      solve it does not converge, or (auto) by fixed
+                      point until the first such solve, then Newton (the
+                      pairs q_dofs = nodes + 1 only) */
 } sym_spvi_opts;
 enum { SYM_MATRIX_AUTO = 0, SYM_MATRIX_KEPT = 1, SYM_MATRIX_NEW = 2 };
+enum { SYM_NONLINEAR_NEWTON = 0, SYM_NONLINEAR_FIXEDPOINT = 1,
+       SYM_NONLINEAR_AUTO = 2 };
 enum { SYM_SYSTEM_AUTO = 0, SYM_SYSTEM_FULL = 1, SYM_SYSTEM_STAGES = 2 };
 extern const sym_stepper_type *const sym_step_spvi;
 /* its order: 2 min(n - 1, 2m - n + 1) for n modes and m nodes */

@@ -205,6 +205,14 @@
    matrix's move errs with a sign, step after step, and drifts the energy
    at the solve's own tolerance */
 #define SYM_SPVI_MOVE_FIXED 1e-1
+/* odeSPVI's fixed-point iteration (NonlinearSolver): at least this many
+   iterations a solve; "auto" turns to Newton after a solve of more than
+   SLOW */
+#define SYM_SPVI_FP_MAXIT 30
+/* and on fixed and reversible steps it goes to this fraction of their
+   tolerance */
+#define SYM_SPVI_FP_TOL 1e-2
+#define SYM_SPVI_FP_SLOW 12
 /* exact stages (staged.c): the iteration on Newton's matrix stops when
    its change is below EPS ulps of the correction, or after ITERS (its
    contraction is O(h^2): two or three suffice) */

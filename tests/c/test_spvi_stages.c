@@ -175,7 +175,7 @@ run (int nq, int nodes, int system, int kind, int batch, double h,
       sys.jac_csc = kind == SPARSE_JAC ? fpu_jac_csc : NULL;
     }
   sym_spvi_opts so = { nq, nodes, SYM_MATRIX_AUTO, system,
-                       kind != DENSE_FD };
+                       kind != DENSE_FD, SYM_NONLINEAR_NEWTON };
   sym_method_opts mo;
   memset (&mo, 0, sizeof mo);
   mo.own = &so;
@@ -426,7 +426,8 @@ test_no_dense (void)
   sys.rhs = fpu_rhs;
   sym_eval ev;
   sym_eval_init (&ev, &sys);
-  sym_spvi_opts so = { 4, 3, SYM_MATRIX_AUTO, SYM_SYSTEM_STAGES, 0 };
+  sym_spvi_opts so = { 4, 3, SYM_MATRIX_AUTO, SYM_SYSTEM_STAGES, 0,
+                       SYM_NONLINEAR_NEWTON };
   sym_method_opts mo;
   memset (&mo, 0, sizeof mo);
   mo.own = &so;

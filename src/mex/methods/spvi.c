@@ -4,13 +4,13 @@
 /* spvi.c -- odeSPVI: the spectral variational integrator (core:
    methods/spvi/).  Its own options: Q_DoFs (modes of q), Nodes (alias
    P_DoFs), odepkg's PolynomialDegree (Q_DoFs = degree + 1, and Nodes
-   unless given), NewtonMatrix, NewtonSystem; sol gains the order used
+   unless given), NewtonMatrix, NewtonSystem, NonlinearSolver; sol gains the order used
    and the pair. */
 #include "../symmex.h"
 
 static const char *const spvi_options[] = {
   "Q_DoFs", "Nodes", "P_DoFs", "PolynomialDegree", "NewtonMatrix",
-  "NewtonSystem", NULL
+  "NewtonSystem", "NonlinearSolver", NULL
 };
 
 /* Nodes and its alias, Q_DoFs and PolynomialDegree: two names of one
@@ -69,6 +69,20 @@ spvi_parse (const char *solver, const mxArray *opts, void *own)
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: NewtonSystem \"stages\" needs "
                        "Q_DoFs = Nodes + 1, got Q_DoFs = %d with Nodes = %d",
                        solver, o->q_dofs, o->nodes);
+  static const char *const nonlin[] = { "newton", "fixedpoint", "auto",
+                                        NULL };
+  v = symmex_field (solver, opts, "NonlinearSolver");
+  const int kn = v ? symmex_word (solver, v, "NonlinearSolver", nonlin) : 0;
+  o->nonlinear = kn == 1 ? SYM_NONLINEAR_FIXEDPOINT
+                 : kn == 2 ? SYM_NONLINEAR_AUTO : SYM_NONLINEAR_NEWTON;
+  if (o->nonlinear != SYM_NONLINEAR_NEWTON && o->q_dofs != o->nodes + 1)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: NonlinearSolver \"%s\" needs "
+                       "Q_DoFs = Nodes + 1, got Q_DoFs = %d with Nodes = %d",
+                       solver, nonlin[kn], o->q_dofs, o->nodes);
+  if (o->nonlinear != SYM_NONLINEAR_NEWTON && o->system == SYM_SYSTEM_FULL)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: NonlinearSolver \"%s\" iterates "
+                       "by stages; it falls back to Newton by stages too, "
+                       "not with NewtonSystem \"full\"", solver, nonlin[kn]);
 }
 
 /* a sparse Df stays sparse (by stages for the pairs Q_DoFs = Nodes + 1,

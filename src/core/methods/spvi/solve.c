@@ -97,7 +97,7 @@ prepare_matrix (spvi_core *c, sym_eval *ev, const spvi_state *s, double h)
                             && c->N <= SYM_SPVI_EVERY_N && ev->rhs_batch
                             && ! ev->jac && ! ev->rhs_jac));
   /* the stages' solve is Newton's own only when exact (staged.c) */
-  c->exact = every && spvi_stages_dense (c);
+  c->exact = every && spvi_stages_dense (c) && ! c->fp;
   c->nw.quad = every && (! c->sg || c->exact);
   if (every)
     {
@@ -168,6 +168,18 @@ refresh_policy (spvi_core *c, const sym_eval *ev)
     }
 }
 
+/* Fixed point (v = 1) or Newton for the next solve: the stages' factors
+   are those of the other one */
+static void
+set_fp (spvi_core *c, int v)
+{
+  if (c->fp == v)
+    return;
+  c->fp = v;
+  sym_newton_invalidate (&c->nw);
+  c->nw.kq_ok = 0;
+}
+
 int
 spvi_solve (spvi_core *c, sym_eval *ev, double t, double h,
             const double *yk, const spvi_scale *S, const spvi_state *s,
@@ -183,16 +195,38 @@ spvi_solve (spvi_core *c, sym_eval *ev, double t, double h,
   c->ndx = 0;
   for (int j = 0; j < m; j++)
     c->tj[j] = t + 0.5 * h * (c->z[j] + 1.0);
-  const int every = prepare_matrix (c, ev, s, h);
+  set_fp (c, c->sg && s->nonlinear != SYM_NONLINEAR_NEWTON && ! c->fp_off);
+  int every = prepare_matrix (c, ev, s, h);
   for (int i = 0; i < N; i++)
     c->scale[i] = i < (n - 1) * d ? S->q : S->p;
   c->nw.tol = fast ? tol : s->tol;
+  /* a fixed point to round-off stops by its linear rate, whose error has
+     a sign from step to step: further below the tolerance */
+  if (c->fp && tol <= SYM_FIXED_TOL * s->tol)
+    c->nw.tol *= SYM_SPVI_FP_TOL;
   c->move_tol = s->adaptive ? c->nw.tol : SYM_SPVI_MOVE_FIXED * c->nw.tol;
-  c->nw.maxit = s->maxit;
+  c->nw.maxit = c->fp ? fmax (s->maxit, SYM_SPVI_FP_MAXIT) : s->maxit;
   sym_newton_problem prob = { spvi_residual, spvi_matrix, c,
                               c->sg ? spvi_stages_factor : NULL,
                               c->sg ? spvi_stages_solve : NULL };
   int st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &ev->st.cnt);
+  if (c->fp && (st == SYM_NEWTON_FAIL || c->nw.iters > SYM_SPVI_FP_SLOW))
+    {
+      /* auto: a fixed point that fails, or converges slowly, gives way
+         to Newton for the rest of the run; a failed one is solved again
+         by Newton */
+      if (s->nonlinear == SYM_NONLINEAR_AUTO)
+        c->fp_off = 1;
+      if (st == SYM_NEWTON_FAIL)
+        {
+          memcpy (c->x, c->nw.x0, (size_t) N * sizeof (double));
+          set_fp (c, 0);
+          every = prepare_matrix (c, ev, s, h);
+          c->nw.maxit = s->maxit;
+          st = sym_newton_solve (&c->nw, &prob, c->x, c->scale,
+                                 &ev->st.cnt);
+        }
+    }
   if (every && c->nw.kq_new)
     c->h_kq = h;
   /* the simplified iteration failed (a failed callback comes back with

@@ -71,6 +71,9 @@ typedef struct {
   double *A;           /* node Jacobians, (2d)^2 each, of the kept matrix
                           (with stages only when exact) */
   spvi_stages *sg;     /* NULL: Newton's matrix in full, dense */
+  int fp;              /* this solve by fixed-point iteration: the
+                          stages' solve with J = 0 (solve.c) */
+  int fp_off;          /* NonlinearSolver auto: Newton from now on */
   int exact;           /* stages with a new matrix every solve: node
                           Jacobians evaluated, the stages' solve iterated
                           to Newton's own correction (staged.c) */
@@ -145,6 +148,7 @@ typedef struct {
   double tol;
   int maxit;
   int newmat;          /* SYM_MATRIX_AUTO, _KEPT or _NEW */
+  int nonlinear;       /* SYM_NONLINEAR_* */
   int stages;          /* SPVI_FULL, _STAGES or _STAGES_SPARSE */
   int adaptive;        /* set_tolerances was called */
   double est_rtol, est_atol;   /* the adaptive tolerances (atol: the

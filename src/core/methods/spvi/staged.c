@@ -36,7 +36,9 @@
    is iterated on Newton's own matrix (spvi_matvec) with the stages as
    its preconditioner, to round-off: a few products per correction, and
    the correction is Newton's, whose quadratic error the stopping test
-   of newton.c's quad mode assumes. */
+   of newton.c's quad mode assumes.  With J = 0 (fp) the iteration is
+   the fixed point of the step's equations, as non-stiff implicit
+   Runge-Kutta codes iterate theirs: no Jacobian, no LU. */
 #include "spvi.h"
 
 #include <complex.h>
@@ -546,13 +548,15 @@ spvi_stages_factor (void *ctx, const double *x, sym_counters *cnt)
   spvi_core *c = ctx;
   spvi_stages *g = c->sg;
   const double hh = 0.5 * c->h;
-  int st = c->exact ? exact_jac (c, x) : eval_jac (c, x);
-  if (st)
-    return st;
   c->h_mat = c->h;
   c->noise_ok = 0;
   c->nae = 1;
   c->extra = 0;
+  if (c->fp)
+    return SYM_SUCCESS;   /* J = 0: nothing to evaluate or factor */
+  int st = c->exact ? exact_jac (c, x) : eval_jac (c, x);
+  if (st)
+    return st;
   if (g->whole)
     {
       /* M = I + (M - I) */
@@ -696,7 +700,8 @@ stages_apply (spvi_core *c, double *b, sym_counters *cnt)
             zr[k] = creal (zi[k]);
         }
       const int k = cimag (g->lam[i]) == 0.0 ? 1 : 2;
-      int st = g->schur ? schur_solve (g, i, d, 0.5 * c->h_mat, (double *) zi,
+      int st = c->fp ? SYM_SUCCESS
+               : g->schur ? schur_solve (g, i, d, 0.5 * c->h_mat, (double *) zi,
                                        k, cnt)
                         : sym_stage_lu_solve (&g->lu[i], (double *) zi, cnt);
       if (st)
@@ -777,6 +782,11 @@ spvi_jac_p (spvi_core *c, int j, const double *dy, double *out)
   const int d = c->d;
   const size_t nn = 2 * (size_t) d;
   const spvi_stages *g = c->sg;
+  if (c->fp)
+    {
+      memset (out, 0, (size_t) d * sizeof (double));
+      return;
+    }
   if (g && g->sparse && ! c->exact)
     {
       /* J's p rows only */
@@ -806,6 +816,12 @@ spvi_stages_noise (spvi_core *c, const double *qa, const double *pa)
   const size_t nn = 2 * (size_t) d;
   spvi_stages *g = c->sg;
   double *row = g->wv;          /* the row sums, q rows then p rows */
+  if (c->fp)
+    {
+      c->noise_q = c->noise_p = 0.0;
+      c->noise_ok = 1;
+      return;
+    }
   memset (row, 0, nn * sizeof (double));
   for (size_t l = 0; l < nn; l++)
     {

@@ -116,6 +116,7 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
   const int newmat = own ? own->newton_matrix : SYM_MATRIX_AUTO;
   const int system = own ? own->system : SYM_SYSTEM_AUTO;
   const int sparse = own && own->sparse;
+  const int nonlin = own ? own->nonlinear : SYM_NONLINEAR_NEWTON;
   /* n > 2m: the quadrature cannot see the top modes and the iteration
      does not converge; also n < 2 (no motion) */
   if (dim < 1 || n < 2 || m < 1 || n > 2 * m || m > SYM_SPVI_MAX_NODES
@@ -126,6 +127,8 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
       /* stages need a pair n - 1 = m; a sparse Df, the staged solver
          (by stages, or for the other pairs the whole system, sparse) */
       || (n - 1 != m && system == SYM_SYSTEM_STAGES)
+      || nonlin < SYM_NONLINEAR_NEWTON || nonlin > SYM_NONLINEAR_AUTO
+      || (n - 1 != m && nonlin != SYM_NONLINEAR_NEWTON)
       || (sparse && system == SYM_SYSTEM_FULL))
     {
       *status = SYM_EBADINPUT;
@@ -147,9 +150,12 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
   s->maxit = opts && opts->max_newton > 0 ? opts->max_newton
              : SYM_NEWTON_MAXIT;
   s->newmat = newmat;
+  s->nonlinear = nonlin;
   if (sparse)
     s->stages = SPVI_STAGES_SPARSE;
   else if (system == SYM_SYSTEM_STAGES
+           /* the fixed point is the stages' solve with J = 0 */
+           || nonlin != SYM_NONLINEAR_NEWTON
            || (system == SYM_SYSTEM_AUTO && n - 1 == m
                && (size_t) (n - 1 + m) * d > SYM_SPVI_STAGES_N))
     s->stages = SPVI_STAGES;
