@@ -420,7 +420,7 @@
 ## ------------------------------------------ dense matrices through stages
 %!test
 %! ## separable H, full Hessian, d = 120: auto takes the stages (6*120 >
-%! ## 600; the same steps, bit for bit, as "stages"), against "full"
+%! ## 64; the same steps, bit for bit, as "stages"), against "full"
 %! [d, y0, o] = chain40 ();
 %! n = 120;
 %! z0 = fpu_y0 (n);
@@ -432,8 +432,8 @@
 %! by_stages (sa, 3);
 %! by_full (sf);
 %! assert (relerr (sa.y(:, end), sf.y(:, end)) <= 1e-12);
-%! ## below the threshold auto keeps the whole system: d = 40
-%! by_full (odeSPVI (@fpu1, [0 0.5], y0, symplecticset (o, "HamiltonianHessFcn",
+%! ## below the threshold auto keeps the whole system: d = 10, 6*10 <= 64
+%! by_full (odeSPVI (@fpu1, [0 0.5], fpu_y0 (10), symplecticset (o, "HamiltonianHessFcn",
 %!                   @fpu_hess_full)));
 
 %!test

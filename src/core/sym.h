@@ -389,7 +389,7 @@ extern const sym_stepper_type *const sym_step_splitting;
    nodes) d)^2, or ceil(nodes/2) stage systems of size 2d with one
    Jacobian for all nodes (the pairs q_dofs = nodes + 1 only), or chosen:
    stages when Df is sparse or the whole system has more than
-   SYM_SPVI_STAGES_N unknowns.  sparse: the system's Df is sparse
+   SYM_SPVI_STAGES_N unknowns (tuning.h).  sparse: the system's Df is sparse
    (sym_system.sparse): stages, or for the other pairs the whole system
    with one Jacobian for all nodes, factored sparse */
 typedef struct {

@@ -218,9 +218,14 @@
    contraction is O(h^2): two or three suffice) */
 #define SYM_SPVI_EXACT_EPS 4.0
 #define SYM_SPVI_EXACT_ITERS 8
-/* by default Newton's systems go by stages (staged.c) above this many
-   unknowns of the whole step system */
-#define SYM_SPVI_STAGES_N 600
+/* by default Newton's systems go by stages (staged.c) above STAGES_N
+   unknowns of the whole step system when the pair has at most
+   STAGES_NODES nodes, and above STAGES_N_MANY whatever its nodes (many
+   nodes at a long step: the whole system's Newton converges where the
+   staged one, with one J for all nodes, fails) */
+#define SYM_SPVI_STAGES_N 64
+#define SYM_SPVI_STAGES_NODES 16
+#define SYM_SPVI_STAGES_N_MANY 600
 /* the stage reduction needs the same S from q's and p's equations: to
    this relative round-off */
 #define SYM_SPVI_STAGE_SAME 1e-10

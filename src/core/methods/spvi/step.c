@@ -157,7 +157,9 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
            /* the fixed point is the stages' solve with J = 0 */
            || nonlin != SYM_NONLINEAR_NEWTON
            || (system == SYM_SYSTEM_AUTO && n - 1 == m
-               && (size_t) (n - 1 + m) * d > SYM_SPVI_STAGES_N))
+               && (size_t) (n - 1 + m) * d
+                  > (m <= SYM_SPVI_STAGES_NODES ? SYM_SPVI_STAGES_N
+                     : SYM_SPVI_STAGES_N_MANY)))
     s->stages = SPVI_STAGES;
   int st = spvi_core_init (&s->lo, d, n, m, s->stages);
   if (! st)
