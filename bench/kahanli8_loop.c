@@ -17,6 +17,7 @@
    H days, then the final y = [q; v] (36 numbers).  Built -O2 as the
    gateways are.  */
 
+#define _POSIX_C_SOURCE 199309L   /* clock_gettime */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
