@@ -25,7 +25,7 @@
 ##
 ## Times are wall clock per step, the median of 3 calls made in turns
 ## (the machine is shared); the slow Octave-FCN runs take fewer steps.
-## About 3 minutes.  Benchmarks are not tests: nothing here asserts.
+## About 2 minutes.  Benchmarks are not tests: nothing here asserts.
 
 1;
 
