@@ -141,6 +141,7 @@ bench: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_large.m
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_ensemble.m
 	$(MAKE) --no-print-directory bench-core
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_compiled.m
 
 # The core alone, compiled as the gateways are (-O2) and linked with the
 # LAPACK and BLAS Octave links.

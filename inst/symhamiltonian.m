@@ -26,7 +26,7 @@
 ## and, when H = p'M^-1 p/2 + V(q) with constant M and F free of p, the
 ## acceleration for @code{SecondOrder}.  Common subexpressions are shared.
 ## Compiling and caching are symcompile's: a second call with the same H
-## costs no compile.  Every symbol of H must be in q, p, t or the
+## costs no compile (and in the same session no generation either).  Every symbol of H must be in q, p, t or the
 ## parameters.
 ##
 ## Example: Kepler with the parameter mu.
@@ -47,10 +47,49 @@ function fcn = symhamiltonian (H, q, p, varargin)
   if (nargin < 3)
     print_usage ();
   endif
-  [H, q, p, t, par, F] = __symham_args__ (who, H, q, p, varargin{:});
-  [src, hasacc] = __symham_source__ (who, H, q, p, t, par, F);
+  persistent memo;
+  if (isempty (memo))
+    memo = containers.Map ();
+  endif
+  ## the same arguments (the SymPy forms of the formulas, assumptions
+  ## included) give the same C: generated once a session, as SymPy costs
+  ## far more than the lookup; only arguments that were accepted are kept
+  key = memo_key ([{H, q, p}, varargin]);
+  if (! isempty (key) && isKey (memo, key))
+    c = memo(key);
+    [src, hasacc] = c{:};
+  else
+    [H, q, p, t, par, F] = __symham_args__ (who, H, q, p, varargin{:});
+    [src, hasacc] = __symham_source__ (who, H, q, p, t, par, F);
+    if (! isempty (key))
+      if (memo.Count >= 64)
+        memo = containers.Map ();
+      endif
+      memo(key) = {src, hasacc};
+    endif
+  endif
   extra = struct ("H", H, "formula", "hamiltonian", "accel", hasacc);
   fcn = __symcompile_build__ (src, "", extra, who);
+endfunction
+
+## the arguments as text: sym by their SymPy form, strings and numbers as
+## they are; "" (no memo) for anything else
+function key = memo_key (args)
+  key = "";
+  parts = cell (size (args));
+  for k = 1:numel (args)
+    x = args{k};
+    if (isa (x, "sym"))
+      parts{k} = ["sym " mat2str(size (x)) " " struct(x).pickle];
+    elseif (ischar (x) && isrow (x))
+      parts{k} = ["char " x];
+    elseif (isnumeric (x) && isreal (x) && ! issparse (x))
+      parts{k} = [class(x) " " mat2str(size (x)) " " mat2str(double (x(:).'), 17)];
+    else
+      return;
+    endif
+  endfor
+  key = hash ("md5", strjoin (parts, "\n--\n"));
 endfunction
 
 %!shared kep
@@ -65,3 +104,19 @@ endfunction
 %! y = [0.5; 0.1; 0.2; 1.5]; r = norm (y(1:2));
 %! assert (kep (0, y, 2), [y(3:4); -2 * y(1:2) / r^3], 1e-14);
 %! assert (kep.energy (0, y, 2), sum (y(3:4).^2) / 2 - 2 / r, 1e-14);
+%!test
+%! ## the memo: the same arguments, the same library; other ones, not
+%! if (isempty (kep)) return; endif
+%! syms q1 q2 p1 p2 mu
+%! H = (p1^2 + p2^2) / 2 - mu / sqrt (q1^2 + q2^2);
+%! k2 = symhamiltonian (H, [q1 q2], [p1 p2], "Parameters", mu);
+%! assert (k2.lib, kep.lib);
+%! assert (k2.cached);
+%! k3 = symhamiltonian (H, [q1 q2], [p1 p2], "Parameters", mu, "Force", -mu * [p1; p2]);
+%! assert (! strcmp (k3.lib, kep.lib));
+%! y = [0.5; 0.1; 0.2; 1.5];
+%! assert (k3 (0, y, 2), kep (0, y, 2) - [0; 0; 2 * y(3:4)], 1e-15);
+%!error <symhamiltonian: symbols not bound.*: mu>
+%! pkg load symbolic
+%! syms q1 q2 p1 p2 mu
+%! symhamiltonian ((p1^2 + p2^2) / 2 - mu / sqrt (q1^2 + q2^2), [q1 q2], [p1 p2]);

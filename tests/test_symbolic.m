@@ -8,9 +8,9 @@
 ## by hand and solved by ode45.  Without the symbolic package every test
 ## says so and passes nothing.
 
-%!shared have, kep, pen, hh, dp
+%!shared have, kep, pen, hh, dp, sol, fpu
 %! have = ! isempty (pkg ("list", "symbolic"));
-%! kep = pen = hh = dp = [];
+%! kep = pen = hh = dp = sol = fpu = [];
 %! if (! have)
 %!   printf ("test_symbolic: skipped, no symbolic package (octave-symbolic)\n");
 %! else
@@ -24,6 +24,24 @@
 %!                        [q1 q2], [p1 p2]);
 %!   dp = symlagrangian (va^2 + vb^2/2 + va*vb*cos (a-b) + 2*g*cos (a) + g*cos (b),
 %!                       [a b], [va vb], "Parameters", g);
+%!   ## the outer solar system: 6 bodies in space, the masses and G as
+%!   ## parameters
+%!   q = sym ("q", [18 1]); p = sym ("p", [18 1]); ms = sym ("m", [6 1]);
+%!   syms G
+%!   H = sum (p.^2 ./ kron (ms, [1; 1; 1])) / 2;
+%!   for i = 1:5
+%!     for j = i+1:6
+%!       dq = q(3*j-2:3*j) - q(3*i-2:3*i);
+%!       H -= G * ms(i) * ms(j) / sqrt (sum (dq.^2));
+%!     endfor
+%!   endfor
+%!   sol = symhamiltonian (H, q, p, "Parameters", [ms; G]);
+%!   ## a beta-FPU chain of 16 unit masses, fixed ends
+%!   q = sym ("q", [16 1]); p = sym ("p", [16 1]);
+%!   syms beta
+%!   r = [q(1); q(2:end) - q(1:end-1); -q(end)];
+%!   fpu = symhamiltonian (sum (p.^2) / 2 + sum (r.^2 / 2 + beta * r.^4 / 4),
+%!                         q, p, "Parameters", beta);
 %! endif
 
 %!function [dy, H] = kep_oct (t, y, mu)
@@ -47,6 +65,72 @@
 %!  x = y(1); z = y(2);
 %!  dy = [y(3); y(4); -x - 2*x*z; -z - x^2 + z^2];
 %!  H = blkdiag ([1 + 2*z, 2*x; 2*x, 1 - 2*z], eye (2));
+%!endfunction
+
+%!function [dy, Hs] = sol_oct (t, y, par)
+%!  ## the N-body H by hand: pair by pair, V = -G m_i m_j / |q_j - q_i|
+%!  m = par(1:6); G = par(7); mm = kron (m(:), [1; 1; 1]);
+%!  acc = zeros (18, 1); Hq = zeros (18);
+%!  for i = 1:5
+%!    for j = i+1:6
+%!      a = 3*i-2:3*i; b = 3*j-2:3*j;
+%!      d = y(b) - y(a); r = norm (d); c = G * m(i) * m(j);
+%!      acc(a) += c * d / r^3; acc(b) -= c * d / r^3;
+%!      B = c * (eye (3) / r^3 - 3 * (d * d') / r^5);
+%!      Hq(a,a) += B; Hq(b,b) += B; Hq(a,b) -= B; Hq(b,a) -= B;
+%!    endfor
+%!  endfor
+%!  dy = [y(19:36) ./ mm; acc];
+%!  Hs = blkdiag (Hq, diag (1 ./ mm));
+%!endfunction
+
+%!function [dy, H] = fpu_oct (t, y, beta)
+%!  d = numel (y) / 2;
+%!  r = diff ([0; y(1:d); 0]);
+%!  dy = [y(d+1:end); diff(r + beta * r .* r .* r)];
+%!  k = 1 + 3 * beta * r .* r;
+%!  Hq = spdiags ([[-k(2:d); 0], k(1:d) + k(2:d+1), [0; -k(2:d)]], -1:1, d, d);
+%!  H = blkdiag (Hq, speye (d));
+%!endfunction
+
+%!function V = sol_pot (y, par)
+%!  V = 0;
+%!  for i = 1:5
+%!    for j = i+1:6
+%!      V -= par(7) * par(i) * par(j) / norm (y(3*j-2:3*j) - y(3*i-2:3*i));
+%!    endfor
+%!  endfor
+%!endfunction
+
+%!function a = sol_acc (t, q, par)
+%!  ## the accelerations, -M^-1 dV/dq
+%!  dy = sol_oct (t, [q; zeros(18, 1)], par);
+%!  a = dy(19:36) ./ kron (par(1:6)', [1; 1; 1]);
+%!endfunction
+
+%!function [y0, par] = solar_data ()
+%!  ## the outer solar system on 5 September 1994 (AU, days), the Sun's
+%!  ## mass with the inner planets'; y0 = [q; p], p = m v
+%!  par = [1.00000597682, 0.000954786104043, 0.000285583733151, ...
+%!         0.0000437273164546, 0.0000517759138449, 1/1.3e8, 2.95912208286e-4];
+%!  q = [0 0 0; -3.5023653 -3.8169847 -1.5507963; 9.0755314 -3.0458353 -1.6483708;
+%!       8.3101420 -16.2901086 -7.2521278; 11.4707666 -25.7294829 -10.8169456;
+%!       -15.5387357 -25.2225594 -3.1902382]';
+%!  v = [0 0 0; 0.00565429 -0.00412490 -0.00190589; 0.00168318 0.00483525 0.00192462;
+%!       0.00354178 0.00137102 0.00055029; 0.00288930 0.00114527 0.00039677;
+%!       0.00276725 -0.00170702 -0.00136504]';
+%!  y0 = [q(:); v(:) .* kron(par(1:6)', [1; 1; 1])];
+%!endfunction
+
+%!function J = stepjac (s, f, y0, opts, varargin)
+%!  ## the Jacobian of the run's end point in y0, by central differences
+%!  n = numel (y0); J = zeros (n); del = 1e-5;
+%!  for k = 1:n
+%!    e = zeros (n, 1); e(k) = del;
+%!    [~, yp] = s (f, [0 1], y0 + e, opts, varargin{:});
+%!    [~, ym] = s (f, [0 1], y0 - e, opts, varargin{:});
+%!    J(:,k) = (yp(end,:) - ym(end,:))' / (2 * del);
+%!  endfor
 %!endfunction
 
 %!function dx = dp_el (t, x, g)
@@ -86,6 +170,93 @@
 %!   [~, y1] = s{1} (hh, [0 5], y0h, opts);
 %!   [~, y2] = s{1} (@hh_oct, [0 5], y0h, opts);
 %!   assert (relerr (y1, y2) <= 1e-13, func2str (s{1}));
+%! endfor
+
+%!test
+%! ## the outer solar system and the FPU chain: 100 fixed steps, every solver
+%! if (! have) return; endif
+%! [y0, par] = solar_data ();
+%! opts = symplecticset ("TimeStepSize", 50, "TimeStepNumber", 100);
+%! for s = {@odeSE, @odeSV, @odeSPVI}
+%!   [~, y1] = s{1} (sol, [0 5000], y0, opts, par);
+%!   [~, y2] = s{1} (@sol_oct, [0 5000], y0, opts, par);
+%!   assert (relerr (y1, y2) <= 1e-13, func2str (s{1}));
+%! endfor
+%! d = 16; y0 = [0.1 * sin(pi * (1:d)' / (d + 1)); zeros(d, 1)];
+%! opts = symplecticset ("TimeStepSize", 0.1, "TimeStepNumber", 100);
+%! for s = {@odeSE, @odeSV, @odeSPVI}
+%!   [~, y1] = s{1} (fpu, [0 10], y0, opts, 1);
+%!   [~, y2] = s{1} (@fpu_oct, [0 10], y0, opts, 1);
+%!   assert (relerr (y1, y2) <= 1e-13, func2str (s{1}));
+%! endfor
+%! ## the explicit forms: Separable, and SecondOrder on y = [q; v]
+%! opts = symplecticset ("TimeStepSize", 50, "TimeStepNumber", 100,
+%!                       "Separable", "on", "Method", "kahanli8");
+%! [y0, par] = solar_data ();
+%! [~, y1] = odeSV (sol, [0 5000], y0, opts, par);
+%! [~, y2] = odeSV (@sol_oct, [0 5000], y0, opts, par);
+%! assert (relerr (y1, y2) <= 1e-13);
+%! opts = symplecticset ("TimeStepSize", 50, "TimeStepNumber", 100,
+%!                       "SecondOrder", "on", "Method", "kahanli8");
+%! mm = kron (par(1:6)', [1; 1; 1]); yv = [y0(1:18); y0(19:36) ./ mm];
+%! [~, y1] = odeSV (sol, [0 5000], yv, opts, par);
+%! [~, y2] = odeSV (@sol_acc, [0 5000], yv, opts, par);
+%! assert (relerr (y1, y2) <= 1e-13);
+
+%!test
+%! ## generated Hessians of the solar system and the chain: the analytic ones
+%! if (! have) return; endif
+%! [y0, par] = solar_data ();
+%! [dy, H] = sol (0, y0, par);
+%! [dy2, H2] = sol_oct (0, y0, par);
+%! assert (dy, dy2, 1e-14 * norm (dy2, Inf));
+%! assert (full (H), H2, 1e-13 * norm (H2, Inf));
+%! assert (sol.nnz, nnz (H2));
+%! E = sum (y0(19:36) .* dy2(1:18)) / 2 + sol_pot (y0, par);
+%! assert (sol.energy (0, y0, par), E, 1e-14 * abs (E));
+%! y = [0.1 * sin(1:16)'; cos(1:16)'];
+%! [dy, H] = fpu (0, y, 1.5);
+%! [dy2, H2] = fpu_oct (0, y, 1.5);
+%! assert (dy, dy2, 1e-14);
+%! assert (full (H), full (H2), 1e-14);
+%! assert (fpu.nnz, 3 * 16 - 2 + 16);
+
+%!test
+%! ## symplecticity: the Jacobian of 10 steps keeps the form J (central
+%! ## differences), compiled fcn, every solver
+%! if (! have) return; endif
+%! y0 = [0.1; -0.2; 0.3; 0.25];
+%! Om = [zeros(2), eye(2); -eye(2), zeros(2)];
+%! opts = symplecticset ("TimeStepSize", 0.1, "TimeStepNumber", 10);
+%! for s = {@odeSE, @odeSV, @odeSPVI}
+%!   J = stepjac (s{1}, hh, y0, opts);
+%!   assert (norm (J' * Om * J - Om, Inf) < 1e-8, func2str (s{1}));
+%!   assert (norm (J - eye (4), Inf) > 0.1);     # the map moves y0
+%! endfor
+%! ## a map that is not symplectic fails the same check: a damping force
+%! syms x y px py c
+%! fd = symhamiltonian ((px^2 + py^2 + x^2 + y^2) / 2 + x^2*y - y^3/3,
+%!                      [x y], [px py], "Parameters", c, "Force", -c * [px; py]);
+%! J = stepjac (@odeSV, fd, y0, opts, 0.1);
+%! assert (norm (J' * Om * J - Om, Inf) > 1e-2);
+
+%!test
+%! ## reversal: forward, then back from the end point, to y0 (symmetric
+%! ## methods), compiled fcn
+%! if (! have) return; endif
+%! [y0, par] = solar_data ();
+%! opts = symplecticset ("TimeStepSize", 50, "TimeStepNumber", 200, "Separable", "on",
+%!                       "Method", "kahanli8");
+%! [~, y1] = odeSV (sol, [0 1e4], y0, opts, par);
+%! [~, yb] = odeSV (sol, [1e4 0], y1(end,:)', opts, par);
+%! assert (norm (y1(end,:)' - y0, Inf) > 1);
+%! assert (relerr (yb(end,:)', y0) < 1e-12);
+%! y0 = [0.5; 0; 0; sqrt(3)];
+%! opts = symplecticset ("TimeStepSize", 0.05, "TimeStepNumber", 100);
+%! for s = {@odeSV, @odeSPVI}
+%!   [~, y1] = s{1} (kep, [0 5], y0, opts, 1);
+%!   [~, yb] = s{1} (kep, [5 0], y1(end,:)', opts, 1);
+%!   assert (relerr (yb(end,:)', y0) < 1e-11, func2str (s{1}));
 %! endfor
 
 %!test
