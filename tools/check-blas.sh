@@ -10,7 +10,8 @@
 # configuration is checked to be in effect: the core OpenBLAS reports,
 # the libraries mapped in /proc/self/maps.  Quick (default):
 # tests/test_regression.m and the solvers' own tests; full: the whole
-# Octave suite (run_tests), about 10 min a configuration.
+# Octave suite (run_tests), about 10 min a configuration.  CONFIGS (a
+# space-separated list) runs only those configurations, in that order.
 set -u
 octave=$1
 devpath=$2
@@ -37,6 +38,9 @@ code="top = '$top'; addpath ('$top/tests', '${devpath//:/\', \'}');
       $body"
 
 configs=(Prescott Nehalem Sandybridge Haswell Zen SkylakeX reference-blas libm-sse2)
+if [ -n "${CONFIGS:-}" ]; then
+  read -r -a configs <<< "$CONFIGS"
+fi
 status=0
 for c in "${configs[@]}"; do
   env=(OPENBLAS_VERBOSE=2)

@@ -18,4 +18,17 @@ int sym_callback_status (sym_eval *ev, double t, int st);
 int sym_nonfinite_at (sym_eval *ev, double t);
 int sym_nonfinite_df_at (sym_eval *ev, double t);
 
+/* Blocks carved from a chunk instead of taken from the allocator: the
+   arrays and stepper an ensemble's member makes at its start, the same
+   for every member, from one chunk of a member's stack slot that the
+   next member there takes over.  sym_carve_from carves sym_malloc's
+   blocks (16-byte aligned) from chunk (NULL: none, just counted) until
+   sym_carve_end, which returns the bytes asked meanwhile, those that
+   did not fit included (they came from the allocator).  sym_free leaves
+   alone the blocks within the region of sym_carve_region (NULL: none).
+   sym_set_allocator ends both. */
+void sym_carve_region (const void *lo, size_t nbytes);
+void sym_carve_from (void *chunk, size_t nbytes);
+size_t sym_carve_end (void);
+
 #endif

@@ -51,6 +51,21 @@ fd_color (const sym_eval *ev, int j)
   return ev->jp_ncolors > 0 ? ev->jp_color[j] : j;
 }
 
+/* The differences' workspace of at least need doubles: ev's, grown when
+   too small; kept for the run, as a Df of the same size follows each
+   step or Newton failure, and an allocation for each is needless work */
+static double *
+fd_room (sym_eval *ev, size_t need)
+{
+  if (need > ev->fd_cap)
+    {
+      sym_free (ev->fd_work);
+      ev->fd_work = sym_malloc (need * sizeof (double));
+      ev->fd_cap = ev->fd_work ? need : 0;
+    }
+  return ev->fd_work;
+}
+
 /* Forward differences at k states (columns of y, times t, f0 their f):
    df holds k n-by-n Jacobians.  The step of column j balances truncation
    (~ delta) against round-off (~ eps / delta).  Without a pattern each
@@ -93,8 +108,7 @@ jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
   /* a small system's workspace on the stack: an allocation costs more
      than its differences (a block of the MEX allocator most of all) */
   double local[SYM_FD_LOCAL];
-  double *w = need <= SYM_FD_LOCAL ? local
-                                   : sym_malloc (need * sizeof (double));
+  double *w = need <= SYM_FD_LOCAL ? local : fd_room (ev, need);
   if (! w)
     return SYM_ENOMEM;
   double *yp = w, *fp = w + (ncw + nb) * n, *del = w + 2 * (ncw + nb) * n;
@@ -176,8 +190,6 @@ jac_fd_many (sym_eval *ev, int k, const double *t, const double *y,
         }
     }
   ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
-  if (w != local)
-    sym_free (w);
   return st;
 }
 
@@ -247,16 +259,19 @@ jac_fd (sym_eval *ev, double t, const double *y, const double *f0,
 {
   if (f0)
     return jac_fd_many (ev, 1, &t, y, f0, NULL, df);
-  int n = 2 * ev->dim;
-  double *fb = sym_malloc ((size_t) n * sizeof (double));
-  if (! fb)
+  /* f(t, y) apart from the workspace jac_fd_many takes: on the stack,
+     or kept as that is */
+  const size_t n = 2 * (size_t) ev->dim;
+  double local[SYM_FD_LOCAL / 8];
+  if (n > SYM_FD_LOCAL / 8 && ! ev->fd_f
+      && ! (ev->fd_f = sym_malloc (n * sizeof (double))))
     return SYM_ENOMEM;
+  double *fb = n > SYM_FD_LOCAL / 8 ? ev->fd_f : local;
   long before = ev->st.cnt.nrhs;
   int st = sym_rhs (ev, t, y, fb);
   ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
   if (! st)
     st = jac_fd_many (ev, 1, &t, y, fb, NULL, df);
-  sym_free (fb);
   return st;
 }
 
@@ -493,8 +508,7 @@ jac_fd_csc (sym_eval *ev, double t, const double *y, const double *f0,
   size_t ncw = ev->rhs_batch ? (size_t) ng : 1;
   if (ncw * n > SYM_FD_BATCH_DOUBLES)
     ncw = SYM_FD_BATCH_DOUBLES / n > 0 ? SYM_FD_BATCH_DOUBLES / n : 1;
-  double *w = sym_malloc ((2 * ncw + 3) * (size_t) n * sizeof (double)
-                          + ncw * sizeof (double));
+  double *w = fd_room (ev, (2 * ncw + 3) * (size_t) n + ncw);
   if (! w)
     return SYM_ENOMEM;
   double *yp = w, *fp = w + ncw * n, *del = fp + ncw * n, *size = del + n;
@@ -550,7 +564,6 @@ jac_fd_csc (sym_eval *ev, double t, const double *y, const double *f0,
       memcpy (df->rowind, ev->jp_rowind, (size_t) nnz * sizeof (int));
     }
   ev->st.cnt.nfd += ev->st.cnt.nrhs - before;
-  sym_free (w);
   return st;
 }
 
@@ -630,6 +643,10 @@ sym_eval_free (sym_eval *ev)
       ev->jp_colptr = ev->jp_rowind = ev->jp_color = NULL;
       ev->jp_ncolors = 0;
     }
+  sym_free (ev->fd_work);
+  sym_free (ev->fd_f);
+  ev->fd_work = ev->fd_f = NULL;
+  ev->fd_cap = 0;
 }
 
 /* the largest |a - b| and the largest entry of a and b: column by column

@@ -208,6 +208,10 @@ typedef struct {
   sym_rhs_jac_csc_fn rhs_jac_csc;
   int *own_pattern;           /* a pattern of its own (of a dropped sparse
                                  Df) that jp_* point into, or NULL */
+  /* the finite differences' workspace and f at the state, kept from
+     one Df to the next (freed by sym_eval_free) */
+  double *fd_work, *fd_f;
+  size_t fd_cap;
   sym_stats st;
   int jac_probed;             /* the first Df has been probed (see
                                  SYM_JAC_GROSS) */
@@ -219,7 +223,7 @@ typedef struct {
 
 /* ev from sys, with zeroed stats */
 void sym_eval_init (sym_eval *ev, const sym_system *sys);
-/* what ev allocated itself (own_pattern) */
+/* what ev allocated itself (own_pattern, the differences' workspace) */
 void sym_eval_free (sym_eval *ev);
 
 /* Calls through ev with counting and checks.  sym_rhs returns the

@@ -7,22 +7,70 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 static sym_alloc_fn sym_alloc_hook = malloc;
 static sym_free_fn sym_free_hook = free;
 
+/* the carving of blocks from a chunk (calls.h) */
+#define CARVE_ALIGN 16
+static struct {
+  int on;
+  char *next, *end;       /* what is left of the chunk */
+  size_t asked;           /* bytes asked since sym_carve_from */
+  uintptr_t lo, hi;       /* the region sym_free leaves alone */
+} carve;
+
 void
 sym_set_allocator (sym_alloc_fn alloc, sym_free_fn dealloc)
 {
   sym_alloc_hook = alloc ? alloc : malloc;
   sym_free_hook = dealloc ? dealloc : free;
+  /* a caller that starts anew ends a carving an error cut short */
+  memset (&carve, 0, sizeof carve);
+}
+
+void
+sym_carve_region (const void *lo, size_t nbytes)
+{
+  carve.lo = (uintptr_t) lo;
+  carve.hi = lo ? carve.lo + nbytes : 0;
+}
+
+void
+sym_carve_from (void *chunk, size_t nbytes)
+{
+  carve.on = 1;
+  carve.next = chunk;
+  carve.end = chunk ? (char *) chunk + nbytes : NULL;
+  carve.asked = 0;
+}
+
+size_t
+sym_carve_end (void)
+{
+  carve.on = 0;
+  carve.next = carve.end = NULL;
+  return carve.asked;
 }
 
 void *
 sym_malloc (size_t nbytes)
 {
+  if (carve.on && nbytes <= (size_t) -1 / 2)
+    {
+      const size_t nb = (nbytes + CARVE_ALIGN - 1) / CARVE_ALIGN
+                        * CARVE_ALIGN;
+      carve.asked += nb ? nb : CARVE_ALIGN;
+      if (nb && carve.next && nb <= (size_t) (carve.end - carve.next))
+        {
+          void *p = carve.next;
+          carve.next += nb;
+          return p;
+        }
+    }
   return sym_alloc_hook (nbytes ? nbytes : 1);
 }
 
@@ -40,7 +88,8 @@ sym_calloc (size_t count, size_t size)
 void
 sym_free (void *ptr)
 {
-  if (ptr)
+  /* a carved block goes with its chunk */
+  if (ptr && ! ((uintptr_t) ptr >= carve.lo && (uintptr_t) ptr < carve.hi))
     sym_free_hook (ptr);
 }
 

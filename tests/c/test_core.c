@@ -450,11 +450,18 @@ scenario_fd_batch_in_parts (void)
         err = fmax (err, fabs (j1[n * n + c * n + r] - ex));
       }
   CHECK (err < 1e-6, "chain Jacobian error %.3g", err);
-  /* too large for the stack's workspace: without memory, SYM_ENOMEM */
+  /* too large for the stack's workspace: the run's, kept from one Df to
+     the next (the same Df again, without memory, and to the bit); a new
+     run without memory gets SYM_ENOMEM */
   sym_set_allocator (no_alloc, count_free);
+  CHECK (sym_jac_many (&cb, (int) k, tc, yc, fc, j2) == 0
+         && memcmp (j1, j2, k * n * n * sizeof (double)) == 0,
+         "chain: the workspace kept for the next Df");
+  sym_eval_free (&cb);
   CHECK (sym_jac_many (&cb, (int) k, tc, yc, fc, j2) == SYM_ENOMEM,
          "chain: finite differences without memory");
   sym_set_allocator (count_alloc, count_free);
+  sym_eval_free (&cs);
   free (yc);
   free (fc);
   free (j1);

@@ -56,9 +56,12 @@ static long hw_blocks;
 static long stk_live, stk_most, stk_total;
 #define HW_BYTE 0xA5
 
+static long nallocs;     /* the allocator's calls */
+
 static void *
 big_alloc (size_t nbytes)
 {
+  nallocs++;
   void *p = malloc (nbytes);
   if (p && nbytes >= BIG_MIN && nbig < MAXBIG)
     {
@@ -971,6 +974,69 @@ test_max_live (void)
       }
 }
 
+/* The blocks a member makes at its start (its run's arrays, its
+   stepper) come from a chunk of its stack's slot, which the next member
+   there takes over: of an ensemble of K like members two at a time, only
+   the first member's come from the allocator, and in these runs a
+   member makes all its blocks at its start: the members beyond the
+   first call the allocator not at all (their second stack aside), and
+   still compute what they do alone. */
+static void
+test_recycled (void)
+{
+  static const char *const pick[] = { "SPVI (4,3) fixed",
+    "SPVI (4,3) adaptive", "SV implicit adaptive", "yoshida4 explicit" };
+  enum { K = 8 };
+  for (size_t i = 0; i < sizeof pick / sizeof pick[0]; i++)
+    {
+      const cfg *c = cfg_named (pick[i]);
+      mopts m;
+      make_mo (c, &m);
+      kuser u;
+      kuser_init (&u, 3);
+      sym_system sys = kep_system (&u, 1, c->jac);
+      double y0[6];
+      kep_start (ecc[1], 3, 2, y0);
+      sym_driver_opts o;
+      rec alone;
+      rec_init (&alone, 6);
+      kep_dopts (c, 1, &alone, &o);
+      sym_stats sa;
+      long n0 = nallocs;
+      const int sta = sym_integrate (*c->type, &sys, &m.mo, &o, y0, &sa);
+      const long single = nallocs - n0;
+      long ens[2];
+      for (int big_k = 0; big_k < 2; big_k++)
+        {
+          const int k = big_k ? K : 1;
+          erun e;
+          erun_init (&e, k, 6);
+          e.eo.max_live = 2;
+          for (int j = 0; j < k; j++)
+            {
+              memcpy (e.y0 + 6 * j, y0, sizeof y0);
+              kep_dopts (c, 1, &e.recs[j], &e.d[j]);
+            }
+          n0 = nallocs;
+          CHECK (erun_go (&e, *c->type, &sys, &m.mo) == SYM_SUCCESS,
+                 "%s: recycled blocks: sym_ensemble", c->name);
+          ens[big_k] = nallocs - n0;
+          for (int j = 0; j < k; j++)
+            if (! same_run (c->name, j, e.status[j], &e.recs[j], &e.st[j],
+                            sta, &alone, &sa))
+              fprintf (stderr, "  (recycled blocks: not as alone)\n");
+          erun_free (&e);
+        }
+      const double per = (double) (ens[1] - ens[0]) / (K - 1);
+      printf ("  %s: %ld allocations alone, %.1f per further member\n",
+              c->name, single, per);
+      /* (K - 1) members more, and one stack more: 1 / (K - 1) */
+      CHECK (per < 1.0 && single > 1, "%s: %.1f allocations per further "
+             "member, %ld alone", c->name, per, single);
+      rec_free (&alone);
+    }
+}
+
 /* ------------------------------------------------------------ test 4 */
 /* Pendulum H = p^2/2 - cos q from (q0, 0), a terminal event at q = 0
    going down: at the quarter period K(sin^2(q0/2)), which only the small
@@ -1816,6 +1882,7 @@ main (int argc, char **argv)
   PHASE ("1-3 identity, batching, stacks", test_identity ());
   PHASE ("3 direct sinks", test_direct_sinks ());
   PHASE ("1-2 max_live", test_max_live ());
+  PHASE ("1-2 recycled blocks", test_recycled ());
   PHASE ("4 events", test_events ());
   PHASE ("5 failures", test_failures ());
   PHASE ("6 round stop", test_round_stop ());

@@ -175,6 +175,7 @@ check_jacobians (void)
           CHECK (ev.st.cnt.nfd == (batch ? 1 : (pat ? nc : N)),
                  "batch %d, pattern %d: %ld calls for finite differences",
                  batch, pat, ev.st.cnt.nfd);
+          sym_eval_free (&ev);
         }
       CHECK (states[0] == N && states[1] == nc,
              "batch %d: %ld and %ld states", batch, states[0], states[1]);
@@ -204,6 +205,7 @@ check_jacobians (void)
          && df[0][(D + 1) + 0 * N] != 0.0 && dm[D + 0 * N] == df[0][D],
          "a missing entry: %g (full %g)", dm[(D + 1) + 0 * N],
          df[0][(D + 1) + 0 * N]);
+  sym_eval_free (&ev);
 }
 
 int

@@ -13,6 +13,7 @@
    value the user's function gives that column. */
 #include "driver.h"
 #include "coroutine.h"
+#include "../calls.h"
 
 #include <string.h>
 
@@ -22,6 +23,8 @@ typedef struct member member;
 struct member {
   struct ens *e;
   int idx;
+  int slot;               /* its stack's, and its chunk's */
+  int carving;            /* its start's blocks come from its chunk */
   sym_co co;
   int done;
   sym_system sys;
@@ -50,12 +53,64 @@ typedef struct ens {
   int n;
   int stop;               /* what the members' outputs return from now */
   member *m;
+  /* the blocks a member allocates at its start (its run's arrays and
+     stepper), the same for all: counted at the first member's, then
+     carved from a chunk of that size a stack slot, which the slot's
+     next member takes over instead of allocating them anew */
+  int sized;
+  size_t chunk;
+  char *chunks;
 } ens;
+
+/* ------------------------------------------------------------ carving */
+static void
+carve_start (member *m)
+{
+  ens *e = m->e;
+  if (e->chunks)
+    sym_carve_from (e->chunks + (size_t) m->slot * e->chunk, e->chunk);
+  else if (! e->sized)
+    sym_carve_from (NULL, 0);
+  else
+    return;
+  m->carving = 1;
+}
+
+/* at the member's first call out (its start is over), or its end */
+static void
+carve_stop (member *m)
+{
+  if (! m->carving)
+    return;
+  const size_t asked = sym_carve_end ();
+  m->carving = 0;
+  if (! m->e->sized)
+    {
+      m->e->sized = 1;
+      m->e->chunk = asked;
+    }
+}
+
+/* the chunks of ns slots, once the first member has been counted: none
+   when there is no memory for them (each member allocates its own) */
+static void
+make_chunks (ens *e, int ns)
+{
+  if (e->chunks || ! e->sized || ! e->chunk
+      || e->chunk > ((size_t) -1 / 2) / (size_t) ns)
+    return;
+  e->chunks = sym_malloc (e->chunk * (size_t) ns);
+  if (e->chunks)
+    sym_carve_region (e->chunks, e->chunk * (size_t) ns);
+  else
+    e->chunk = 0;
+}
 
 /* ------------------------------------------------------------ requests */
 static int
 post (member *m, int req)
 {
+  carve_stop (m);
   m->req = req;
   sym_co_yield (&m->co);
   return m->ret;
@@ -193,6 +248,7 @@ static int
 tr_event_out (double te, const double *ye, int ie, void *user)
 {
   member *m = user;
+  carve_stop (m);
   m->ta = te;
   m->ya = ye;
   m->na = ie;
@@ -213,6 +269,7 @@ static int
 tr_output (double t, const double *y, void *user)
 {
   member *m = user;
+  carve_stop (m);
   m->ta = t;
   m->ya = y;
   return m->e->o->direct_sinks ? ex_output (m) : call (m, ex_output);
@@ -229,6 +286,7 @@ static int
 tr_dense_out (double t, double tnew, int k, const double *y, void *user)
 {
   member *m = user;
+  carve_stop (m);
   m->ta = t;
   m->tb = tnew;
   m->na = k;
@@ -260,10 +318,12 @@ member_run (void *arg)
 {
   member *m = arg;
   ens *e = m->e;
+  carve_start (m);
   e->o->status[m->idx]
     = sym_integrate (e->type, &m->sys, e->mo, &m->d,
                      e->o->y0 + (size_t) m->idx * e->n,
                      e->o->stats ? &e->o->stats[m->idx] : NULL);
+  carve_stop (m);
 }
 
 /* the member's copies of the system and its options: every callback
@@ -449,6 +509,7 @@ sym_ensemble (const sym_stepper_type *type, const sym_system *sys,
           const size_t skew = (size_t) (next % 61) * 320;
           member_setup (&e, &e.m[next], next);
           stack_of[next] = j;
+          e.m[next].slot = j;
           if (sym_co_init (&e.m[next].co, stacks[j], ss + skew_max - skew,
                            member_run, &e.m[next]))
             {
@@ -466,6 +527,7 @@ sym_ensemble (const sym_stepper_type *type, const sym_system *sys,
           if (m->done)
             continue;
           advance (m);
+          make_chunks (&e, ns);
           if (m->done)
             {
               live--;
@@ -485,6 +547,8 @@ sym_ensemble (const sym_stepper_type *type, const sym_system *sys,
       if (live > 0)
         evaluate (&e, &g, lo, next);
     }
+  sym_carve_region (NULL, 0);
+  sym_free (e.chunks);
   for (int i = 0; stacks && i < ns; i++)
     sym_free (stacks[i]);
   sym_free (stacks);
