@@ -120,6 +120,9 @@ function varargout = __ensemble_parallel__ (name, varargin)
     ## an anonymous function: it reaches the other process as its text,
     ## and the solver's name resolves there on the path it is given
     worker = str2func (sprintf ("@(a) %s (a{:})", name));
+    ## the processes it starts must not hold this one's pipes (the
+    ## symbolic package's Python would wait on them, and so Octave's exit)
+    __cloexec__ ();
     try
       res = parcellfun (nc, worker, jobs, "UniformOutput", false);
     catch err
