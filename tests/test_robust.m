@@ -189,7 +189,7 @@
 %!   "d = 2000;"
 %!   "o = symplecticset ('TimeStepSize', 0.05, 'Nodes', 40, 'NewtonSystem', 'full');"
 %!   "try"
-%!   "  odeSPVI (@(t, y) [y(d+1:end); -y(1:d)], [0 0.1], ones (2*d, 1), o);"
+%!   "  sol = odeSPVI (@(t, y) [y(d+1:end); -y(1:d)], [0 0.1], ones (2*d, 1), o);"
 %!   "  disp ('no error');"
 %!   "catch e"
 %!   "  printf ('caught <%s> <%s>\\n', e.identifier, e.message);"
