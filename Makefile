@@ -45,6 +45,8 @@ export MKOCTFILE
 
 # --norc: no user or site startup files, so runs are reproducible.
 OCTAVE_RUN := $(OCTAVE) --norc --quiet --no-gui
+# Octave ignores SIGTERM while it waits at exit: KILL a minute later.
+TEST_TIMEOUT := $(if $(shell command -v timeout 2>/dev/null),timeout -k 60 2400)
 
 PACKAGE  := $(shell sed -n 's/^Name:[[:space:]]*//p' DESCRIPTION)
 VERSION  := $(shell sed -n 's/^Version:[[:space:]]*//p' DESCRIPTION)
@@ -80,16 +82,19 @@ setup: deps
 demo: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH)" tools/demo.m
 
-# Runs the C and the Octave tests (the second even if the first fails),
-# then prints the totals as its last line, "N passed, M failed", and fails
-# if any test failed.  A part that printed no summary (e.g. it did not
-# build) counts as one failure.
+# Runs the C and the Octave tests side by side (each is one process at a
+# time, so two cores take both), shows the Octave ones as they run and the
+# C ones' log after, then prints the totals as its last line, "N passed,
+# M failed", and fails if any test failed.  A part that printed no
+# summary (e.g. it did not build) counts as one failure.
 check: setup
 	@mkdir -p build; status=0; \
-	$(MAKE) --no-print-directory check-c 2>&1 | tee build/check-c.log \
-	  || status=1; \
+	{ $(MAKE) --no-print-directory check-c > build/check-c.log 2>&1; \
+	  echo $$? > build/check-c.status; } & cpid=$$!; \
 	$(MAKE) --no-print-directory check-octave 2>&1 | tee build/check-octave.log \
 	  || status=1; \
+	wait $$cpid; cat build/check-c.log; \
+	[ "$$(cat build/check-c.status)" = 0 ] || status=1; \
 	c=$$(sed -n 's/^C tests.*: \([0-9]* passed, [0-9]* failed\)$$/\1/p' build/check-c.log | tail -n 1); \
 	o=$$(sed -n 's/^\([0-9]* passed, [0-9]* failed\)$$/\1/p' build/check-octave.log | tail -n 1); \
 	echo "C tests:      $${c:-no summary (counted as 1 failure)}"; \
@@ -116,8 +121,9 @@ check-quick: all
 
 # tests/run_tests.m prints "N passed, M failed" last and returns the exit
 # status (non-zero on any failure or when no test ran).
+# A hung run (e.g. a process that never exits) fails after 40 min.
 check-octave: all
-	$(OCTAVE_RUN) --eval 'addpath ("$(CURDIR)/tests"); exit (run_tests ())'
+	$(TEST_TIMEOUT) $(OCTAVE_RUN) --eval 'addpath ("$(CURDIR)/tests"); exit (run_tests ())'
 
 check-blas: all
 	@mkdir -p build
