@@ -262,6 +262,25 @@ ens_round (void *user)
 }
 
 /* ------------------------------------------------------------ outputs */
+/* Octave's fn (Y, R, n, K), or fn (R, n, K) without Y: a Y of R x n x K
+   made or cut by Octave (Y and the sizes are destroyed) */
+static mxArray *
+y_call (const char *fn, mxArray *Y, size_t R, int n, int K)
+{
+  mxArray *in[4];
+  int nin = 0;
+  if (Y)
+    in[nin++] = Y;
+  in[nin++] = mxCreateDoubleScalar ((double) R);
+  in[nin++] = mxCreateDoubleScalar (n);
+  in[nin++] = mxCreateDoubleScalar (K);
+  mxArray *out[1] = { NULL };
+  mexCallMATLAB (1, out, nin, in, fn);
+  for (int i = 0; i < nin; i++)
+    mxDestroyArray (in[i]);
+  return out[0];
+}
+
 /* [t, Y]: the terminal events' rows dropped, the rows after a member's
    end NaN, Y cut to the rows of t; events by member, then time */
 static void
@@ -292,13 +311,7 @@ rows_outputs (ens_out *E, int nlhs, mxArray *plhs[])
     {
       /* Y (1:Rt, :, :), by Octave (the one copy of Y, when members
          ended early) */
-      mxArray *in[4] = { E->Ya, mxCreateDoubleScalar ((double) Rt),
-                         mxCreateDoubleScalar (n), mxCreateDoubleScalar (K) };
-      mxArray *out[1] = { NULL };
-      mexCallMATLAB (1, out, 4, in, "resize");
-      for (int i = 0; i < 4; i++)
-        mxDestroyArray (in[i]);
-      E->Ya = out[0];
+      E->Ya = y_call ("resize", E->Ya, Rt, n, K);
     }
   plhs[0] = mxCreateDoubleMatrix (Rt, 1, mxREAL);
   if (Rt)
@@ -562,14 +575,16 @@ run_stacked (ens_out *E, const sym_stepper_type *type, const symmex_args *a,
   return status;
 }
 
-/* The first of the members to run (0-based) and their number: all of
-   Y0's columns, or the share that the internal option __members__ =
-   [first last] (1-based) names: the Parallel option's m-code gives each
-   process its share so */
+/* ------------------------------------------------------- the run's steps */
+/* The members this call runs, into *ar: all of Y0's columns, or the
+   share that the internal option __members__ = [first last] (1-based)
+   names: the Parallel option's m-code gives each process its share so
+   (FCN was checked at the ensemble's first member, and the members
+   keep their numbers).  Returns the first one's index (0-based). */
 static int
-members_range (const char *name, const symmex_args *a, int *count)
+members_share (const char *name, const symmex_args *a, symmex_args *ar)
 {
-  *count = a->members;
+  *ar = *a;
   const mxArray *v = a->opts && mxIsStruct (a->opts)
                      ? symmex_field (name, a->opts, "__members__") : NULL;
   if (! v)
@@ -580,8 +595,225 @@ members_range (const char *name, const symmex_args *a, int *count)
       || r[0] != floor (r[0]) || r[1] != floor (r[1]))
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: __members__ must be [first "
                        "last], 1 <= first <= last <= %d", name, a->members);
-  *count = (int) (r[1] - r[0]) + 1;
-  return (int) r[0] - 1;
+  const int first = (int) r[0] - 1;
+  ar->members = (int) (r[1] - r[0]) + 1;
+  ar->y0 = a->y0 + (size_t) first * a->n;
+  return first;
+}
+
+/* [t, Y]'s arrays: Y of R rows, the grid, the staged rows */
+static void
+rows_init (ens_out *E, const char *name, long R)
+{
+  const int K = E->K, n = E->n;
+  E->R = (size_t) R;
+  /* Y made by Octave's zeros and written in place: an array made by
+     mxCreateNumericArray is copied when it is returned, which would
+     double the peak memory of a large ensemble.  One that cannot be
+     had is said here (zeros would give its own message) */
+  const double ybytes = (double) R * n * K * sizeof (double);
+  if (! symmex_can_allocate (ybytes))
+    mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory for "
+                       "the output: Y of %ld x %d x %d needs %.3g GB; "
+                       "ask for fewer rows (output times in TSPAN, "
+                       "Refine) or fewer members in a call", name, R,
+                       n, K, ybytes / 1e9);
+  E->Ya = y_call ("zeros", NULL, E->R, n, K);
+  E->Y = mxGetPr (E->Ya);
+  E->tg = mxMalloc ((E->R ? E->R : 1) * sizeof (double));
+  E->weak = mxMalloc (E->R ? E->R : 1);
+  const size_t per = (size_t) n * K * sizeof (double);
+  E->B = ((size_t) 4 << 20) / per;
+  E->B = E->B < 1 ? 1 : E->B > 64 ? 64 : E->B;
+  E->stage = mxMalloc (per * E->B);
+  E->flushed = mxMalloc (K * sizeof (size_t));
+}
+
+/* The outputs' state for the members of a: [t, Y]'s rows with
+   nlhs >= 2 (R of them), else each member's context, made as it runs */
+static void
+ens_init (ens_out *E, const char *name, symmex_ctx *c, const symmex_opts *o,
+          const symmex_args *a, int first, int nlhs, long R)
+{
+  const int K = a->members, n = a->n;
+  memset (E, 0, sizeof *E);
+  E->c = c;
+  E->o = o;
+  E->K = K;
+  E->n = n;
+  E->first = first;
+  E->rows_form = nlhs >= 2;
+  E->stop_row = -1;
+  E->nrows = mxMalloc (K * sizeof (size_t));
+  E->tlast = mxMalloc (K * sizeof (double));
+  E->tev = mxMalloc (K * sizeof (double));
+  E->mc = mxCalloc (K, sizeof (symmex_ctx *));
+  E->ref = mxCalloc (K, sizeof (member_ref));
+  E->status = mxMalloc (K * sizeof (int));
+  E->orow = o->outputfcn ? mxMalloc ((size_t) n * K * sizeof (double))
+            : NULL;
+  if (E->rows_form)
+    rows_init (E, name, R);
+  rows_clear (E);
+  symmex_opts *om = mxMalloc (sizeof *om);
+  *om = *o;
+  om->outputfcn = NULL;
+  E->om = om;
+}
+
+/* Member k's driver options dk[k]: dopt's, with the ensemble's sinks */
+static void
+members_dopts (ens_out *E, const char *name, const sym_driver_opts *dopt,
+               sym_driver_opts *dk)
+{
+  for (int k = 0; k < E->K; k++)
+    {
+      /* sol's rows are each member's context's */
+      symmex_ctx *mc = E->rows_form ? NULL : member_ctx (E, k);
+      if (! E->rows_form && ! mc)
+        mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory",
+                           name);
+      E->ref[k].E = E;
+      E->ref[k].k = k;
+      E->tev[k] = NAN;
+      E->status[k] = RUNNING;
+      dk[k] = *dopt;
+      dk[k].output = E->rows_form ? ens_row : symmex_sink_row;
+      dk[k].output_user = E->rows_form ? (void *) &E->ref[k] : (void *) mc;
+      dk[k].event_out = ens_event;
+      dk[k].event_user = &E->ref[k];
+      dk[k].events = dopt->events ? ens_events : NULL;
+      dk[k].dense_out = ! E->rows_form && dopt->dense_out
+                        ? symmex_sink_dense : NULL;
+      dk[k].dense_user = mc;
+    }
+}
+
+/* Explicit fixed steps, Vectorized, rows only: the members stacked as
+   one system.  Its status (SYM_DONE: every member done, the stats in
+   *sst), or -1 when not stacked; should that run fail, the rows are
+   cleared for the members to run again on their own, each to its end */
+static int
+try_stacked (ens_out *E, const symmex_method *m, const void *own,
+             const sym_stepper_type *type, const symmex_args *a,
+             const sym_method_opts *mo, const sym_driver_opts *dopt,
+             sym_stats *sst)
+{
+  const symmex_opts *o = E->o;
+  const int K = E->K, n = E->n;
+  const int stacked = o->vectorized && symmex_fixed (o)
+                      && ! m->needs_newton (own) && ! o->events
+                      && ! o->outputfcn && E->rows_form && K >= 2
+                      && (size_t) n * K <= INT_MAX;
+  memset (sst, 0, sizeof *sst);
+  int sstatus = stacked ? run_stacked (E, type, a, mo, dopt, sst) : -1;
+  if (sstatus == SYM_DONE)
+    for (int k = 0; k < K; k++)
+      E->status[k] = SYM_DONE;
+  else if (stacked)
+    rows_clear (E);
+  return sstatus;
+}
+
+/* The members in rounds by sym_ensemble, each with its options dk[k]
+   and its stats st[k]: the number of Vectorized calls of FCN */
+static long
+run_rounds (ens_out *E, const char *name, const sym_stepper_type *type,
+            const symmex_args *a, const sym_system *sys,
+            const sym_method_opts *mo, sym_driver_opts *dk, sym_stats *st)
+{
+  const int K = E->K;
+  sym_ensemble_opts eo;
+  memset (&eo, 0, sizeof eo);
+  eo.members = K;
+  eo.y0 = a->y0;
+  eo.dopts = dk;
+  eo.stats = st;
+  eo.status = E->status;
+  eo.round = ens_round;
+  eo.round_user = E;
+  /* every sink here is plain C: called on the members' stacks */
+  eo.direct_sinks = 1;
+  /* OutputFcn sees all members at each time: all in lockstep then */
+  eo.max_live = E->o->outputfcn ? 0 : SYM_ENS_LIVE;
+  symmex_in_ensemble = 1;
+  int s = sym_ensemble (type, sys, mo, &eo);
+  symmex_in_ensemble = 0;
+  if (s)
+    mexErrMsgIdAndTxt (s == SYM_ENOMEM ? "Octave:out-of-memory"
+                       : "symplectic:internal", "%s: %s for the ensemble "
+                       "of %d members", name, s == SYM_ENOMEM
+                       ? "out of memory" : "internal failure", K);
+  return eo.nbatch;
+}
+
+/* The counters Stats prints, into *sum: the members' summed, or the
+   stacked run's (sstatus SYM_DONE), with the probe calls of FCN */
+static void
+stats_sum (const ens_out *E, const sym_stats *st, const sym_stats *sst,
+           int sstatus, sym_stats *sum)
+{
+  const symmex_ctx *c = E->c;
+  memset (sum, 0, sizeof *sum);
+  sum->cnt.nrhs = c->probe_calls;
+  sum->cnt.nrhs_states = c->probe_states;
+  sum->cnt.njac = c->probe_jac;
+  for (int k = 0; k < E->K; k++)
+    {
+      long *to = (long *) &sum->cnt;
+      const long *from = (const long *) &st[k].cnt;
+      for (size_t i = 0; i < sizeof sum->cnt / sizeof (long); i++)
+        to[i] += from[i];
+      if (st[k].jac_dropped && ! sum->jac_dropped)
+        {
+          sum->jac_dropped = 1;
+          sum->jac_dropped_t = st[k].jac_dropped_t;
+        }
+      sum->rhs_jac_used |= st[k].rhs_jac_used;
+    }
+  if (sstatus == SYM_DONE)
+    {
+      /* one run did it all: its counts */
+      sum->cnt = sst->cnt;
+      sum->cnt.nrhs += c->probe_calls;
+      sum->cnt.nrhs_states += c->probe_states;
+    }
+}
+
+/* Stats: how the members ran, then the counters of sum */
+static void
+print_stats (const ens_out *E, const sym_stats *sum, int sstatus,
+             long nbatch)
+{
+  const int K = E->K;
+  char jac_used[160];
+  symmex_jac_used (E->c, sum, jac_used, sizeof jac_used);
+  if (sstatus == SYM_DONE)
+    mexPrintf ("Members: %d, integrated as one system of %d "
+               "components (explicit fixed steps, Vectorized); its "
+               "counts:\n", K, E->n * K);
+  else if (E->o->vectorized)
+    mexPrintf ("Members: %d, summed below (%ld Vectorized calls of FCN "
+               "for all of them at once)\n", K, nbatch);
+  else
+    mexPrintf ("Members: %d, summed below\n", K);
+  symmex_print_stats (sum, jac_used, E->c);
+}
+
+/* The outputs asked for: [t, Y, ...], or sol (nothing for nlhs 0) */
+static void
+ens_outputs (ens_out *E, const symmex_method *m, const void *own,
+             const sym_stats *st, int nlhs, mxArray *plhs[])
+{
+  if (E->rows_form)
+    rows_outputs (E, nlhs, plhs);
+  else if (nlhs == 1)
+    {
+      if (E->o->hamiltonian)
+        for (int k = 0; k < E->K; k++)
+          symmex_energy (E->mc[k]);
+      plhs[0] = sol_outputs (E, m, own, st);
+    }
 }
 
 /* ------------------------------------------------------------ the run */
@@ -607,180 +839,30 @@ symmex_ensemble (const symmex_method *m, const void *own,
                  int nlhs, mxArray *plhs[])
 {
   const char *name = m->name;
-  /* the members to run: all, or those that __members__ = [first last]
-     names (a share of another process's ensemble, Parallel: FCN was
-     checked at the ensemble's first member, and the members keep their
-     numbers) */
-  symmex_args ar = *a;
-  const int first = members_range (name, a, &ar.members);
-  ar.y0 = a->y0 + (size_t) first * a->n;
+  symmex_args ar;
+  const int first = members_share (name, a, &ar);
   a = &ar;
-  const int K = a->members, n = a->n;
+  const int K = a->members;
   c->members = K;
-  const long R = sym_output_rows (dopt);
   ens_out E;
-  memset (&E, 0, sizeof E);
-  E.c = c;
-  E.o = o;
-  E.K = K;
-  E.n = n;
-  E.first = first;
-  E.rows_form = nlhs >= 2;
-  E.stop_row = -1;
-  E.nrows = mxMalloc (K * sizeof (size_t));
-  E.tlast = mxMalloc (K * sizeof (double));
-  E.tev = mxMalloc (K * sizeof (double));
-  E.mc = mxCalloc (K, sizeof (symmex_ctx *));
-  E.ref = mxCalloc (K, sizeof (member_ref));
-  E.status = mxMalloc (K * sizeof (int));
-  E.orow = o->outputfcn ? mxMalloc ((size_t) n * K * sizeof (double)) : NULL;
-  if (E.rows_form)
-    {
-      E.R = (size_t) R;
-      /* Y made by Octave's zeros and written in place: an array made by
-         mxCreateNumericArray is copied when it is returned, which would
-         double the peak memory of a large ensemble.  One that cannot be
-         had is said here (zeros would give its own message) */
-      const double ybytes = (double) R * n * K * sizeof (double);
-      if (! symmex_can_allocate (ybytes))
-        mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory for "
-                           "the output: Y of %ld x %d x %d needs %.3g GB; "
-                           "ask for fewer rows (output times in TSPAN, "
-                           "Refine) or fewer members in a call", name, R,
-                           n, K, ybytes / 1e9);
-      mxArray *in[3] = { mxCreateDoubleScalar ((double) E.R),
-                         mxCreateDoubleScalar (n), mxCreateDoubleScalar (K) };
-      mxArray *out[1] = { NULL };
-      mexCallMATLAB (1, out, 3, in, "zeros");
-      for (int i = 0; i < 3; i++)
-        mxDestroyArray (in[i]);
-      E.Ya = out[0];
-      E.Y = mxGetPr (E.Ya);
-      E.tg = mxMalloc ((E.R ? E.R : 1) * sizeof (double));
-      E.weak = mxMalloc (E.R ? E.R : 1);
-      const size_t per = (size_t) n * K * sizeof (double);
-      E.B = ((size_t) 4 << 20) / per;
-      E.B = E.B < 1 ? 1 : E.B > 64 ? 64 : E.B;
-      E.stage = mxMalloc (per * E.B);
-      E.flushed = mxMalloc (K * sizeof (size_t));
-    }
-  rows_clear (&E);
-  symmex_opts *om = mxMalloc (sizeof *om);
-  *om = *o;
-  om->outputfcn = NULL;
-  E.om = om;
+  ens_init (&E, name, c, o, a, first, nlhs, sym_output_rows (dopt));
   sym_driver_opts *dk = mxMalloc (K * sizeof (sym_driver_opts));
   sym_stats *st = mxCalloc (K, sizeof (sym_stats));
-  for (int k = 0; k < K; k++)
-    {
-      /* sol's rows are each member's context's */
-      symmex_ctx *mc = E.rows_form ? NULL : member_ctx (&E, k);
-      if (! E.rows_form && ! mc)
-        mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory",
-                           name);
-      E.ref[k].E = &E;
-      E.ref[k].k = k;
-      E.tev[k] = NAN;
-      E.status[k] = RUNNING;
-      dk[k] = *dopt;
-      dk[k].output = E.rows_form ? ens_row : symmex_sink_row;
-      dk[k].output_user = E.rows_form ? (void *) &E.ref[k] : (void *) mc;
-      dk[k].event_out = ens_event;
-      dk[k].event_user = &E.ref[k];
-      dk[k].events = dopt->events ? ens_events : NULL;
-      dk[k].dense_out = ! E.rows_form && dopt->dense_out ? symmex_sink_dense
-                        : NULL;
-      dk[k].dense_user = mc;
-    }
-  /* explicit fixed steps, Vectorized, rows only: stacked; should that
-     run fail, the members run again on their own, each to its own end */
-  const int stacked = o->vectorized && symmex_fixed (o)
-                      && ! m->needs_newton (own) && ! o->events
-                      && ! o->outputfcn && E.rows_form && K >= 2
-                      && (size_t) n * K <= INT_MAX;
+  members_dopts (&E, name, dopt, dk);
   sym_stats sst;
-  memset (&sst, 0, sizeof sst);
-  int sstatus = stacked ? run_stacked (&E, type, a, mo, dopt, &sst) : -1;
-  if (sstatus == SYM_DONE)
-    for (int k = 0; k < K; k++)
-      E.status[k] = SYM_DONE;
-  else if (stacked)
-    rows_clear (&E);
-  sym_ensemble_opts eo;
-  memset (&eo, 0, sizeof eo);
-  eo.members = K;
-  eo.y0 = a->y0;
-  eo.dopts = dk;
-  eo.stats = st;
-  eo.status = E.status;
-  eo.round = ens_round;
-  eo.round_user = &E;
-  /* every sink here is plain C: called on the members' stacks */
-  eo.direct_sinks = 1;
-  /* OutputFcn sees all members at each time: all in lockstep then */
-  eo.max_live = o->outputfcn ? 0 : SYM_ENS_LIVE;
-  symmex_in_ensemble = 1;
-  int s = sstatus == SYM_DONE ? SYM_SUCCESS
-          : sym_ensemble (type, sys, mo, &eo);
-  symmex_in_ensemble = 0;
-  if (s)
-    mexErrMsgIdAndTxt (s == SYM_ENOMEM ? "Octave:out-of-memory"
-                       : "symplectic:internal", "%s: %s for the ensemble "
-                       "of %d members", name, s == SYM_ENOMEM
-                       ? "out of memory" : "internal failure", K);
+  const int sstatus = try_stacked (&E, m, own, type, a, mo, dopt, &sst);
+  const long nbatch = sstatus == SYM_DONE ? 0
+                      : run_rounds (&E, name, type, a, sys, mo, dk, st);
   if (o->outputfcn)
     symmex_outputfcn (c, NULL, 0, NULL, "done");
-
   sym_stats sum;
-  memset (&sum, 0, sizeof sum);
-  sum.cnt.nrhs = c->probe_calls;
-  sum.cnt.nrhs_states = c->probe_states;
-  sum.cnt.njac = c->probe_jac;
-  for (int k = 0; k < K; k++)
-    {
-      long *to = (long *) &sum.cnt;
-      const long *from = (const long *) &st[k].cnt;
-      for (size_t i = 0; i < sizeof sum.cnt / sizeof (long); i++)
-        to[i] += from[i];
-      if (st[k].jac_dropped && ! sum.jac_dropped)
-        {
-          sum.jac_dropped = 1;
-          sum.jac_dropped_t = st[k].jac_dropped_t;
-        }
-      sum.rhs_jac_used |= st[k].rhs_jac_used;
-    }
+  stats_sum (&E, st, &sst, sstatus, &sum);
+  /* the stacked run's warnings as one run's (Separable), else by member */
   if (sstatus == SYM_DONE)
-    {
-      /* one run did it all: its counts, its warnings (Separable) */
-      sum.cnt = sst.cnt;
-      sum.cnt.nrhs += c->probe_calls;
-      sum.cnt.nrhs_states += c->probe_states;
-      symmex_report (m, own, o, a, c, &sst, SYM_DONE);
-    }
+    symmex_report (m, own, o, a, c, &sst, SYM_DONE);
   else
     report (m, own, o, a, &E, st);
   if (o->stats)
-    {
-      char jac_used[160];
-      symmex_jac_used (c, &sum, jac_used, sizeof jac_used);
-      if (sstatus == SYM_DONE)
-        mexPrintf ("Members: %d, integrated as one system of %d "
-                   "components (explicit fixed steps, Vectorized); its "
-                   "counts:\n", K, n * K);
-      else if (o->vectorized)
-        mexPrintf ("Members: %d, summed below (%ld Vectorized calls of FCN "
-                   "for all of them at once)\n", K, eo.nbatch);
-      else
-        mexPrintf ("Members: %d, summed below\n", K);
-      symmex_print_stats (&sum, jac_used, c);
-    }
-  if (E.rows_form)
-    rows_outputs (&E, nlhs, plhs);
-  else if (nlhs == 1)
-    {
-      if (o->hamiltonian)
-        for (int k = 0; k < K; k++)
-          symmex_energy (E.mc[k]);
-      plhs[0] = sol_outputs (&E, m, own, st);
-    }
+    print_stats (&E, &sum, sstatus, nbatch);
+  ens_outputs (&E, m, own, st, nlhs, plhs);
 }

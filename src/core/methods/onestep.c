@@ -345,6 +345,25 @@ sym_onestep_begin (sym_onestep *o, const sym_eval *ev, double t, double h,
 }
 
 int
+sym_onestep_trial (sym_onestep *o, const sym_eval *ev, double t, double h,
+                   double tend, const double *y, const double *ynext,
+                   sym_trial *v)
+{
+  int st = sym_onestep_begin (o, ev, t, h, tend, y, ynext, &v->cont);
+  if (st)
+    return st;
+  const int d = o->d;
+  v->d = d;
+  v->tr = o->r.trial;
+  v->cu = o->r.cur;
+  v->q0 = v->tr->y0;
+  v->p0 = v->tr->y0 + d;
+  v->q1 = v->tr->y1;
+  v->p1 = v->tr->y1 + d;
+  return SYM_SUCCESS;
+}
+
+int
 sym_onestep_order (const void *state, int *est)
 {
   const sym_onestep *o = state;

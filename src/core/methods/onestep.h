@@ -263,6 +263,20 @@ void *sym_onestep_alloc (int dim, int order, size_t size, int npr,
 int sym_onestep_begin (sym_onestep *o, const sym_eval *ev, double t,
                        double h, double tend, const double *y,
                        const double *ynext, int *cont);
+/* The trial step as the steps of SE and SV read it: its record and the
+   last accepted step's, y0 = [q0; p0] at its start, y1 = [q1; p1] at
+   its end (to be written), whether it continues the last accepted step */
+typedef struct {
+  int d;
+  sym_rec *tr, *cu;
+  const double *q0, *p0;
+  double *q1, *p1;
+  int cont;
+} sym_trial;
+/* sym_onestep_begin, and the trial begun into *v */
+int sym_onestep_trial (sym_onestep *o, const sym_eval *ev, double t,
+                       double h, double tend, const double *y,
+                       const double *ynext, sym_trial *v);
 int sym_onestep_order (const void *state, int *est);
 int sym_onestep_set_tolerances (void *state, const sym_tolerances *tol);
 void sym_onestep_accept (void *state);
@@ -273,5 +287,12 @@ void sym_onestep_free (void *state);
 /* f at the end of the last accepted step (evaluated if not known, and
    kept: the next step starts with it) */
 int sym_onestep_end_f (void *state, sym_eval *ev, double *f);
+
+/* The stepper table of a one-step method: its name, alloc,
+   set_tolerances, step and free, the rest the shared functions above */
+#define SYM_ONESTEP_TYPE(name, alloc, set_tolerances, step, free)       \
+  { name, alloc, sym_onestep_order, set_tolerances, step,               \
+    sym_onestep_accept, sym_onestep_dense, sym_onestep_dense_samples,   \
+    sym_onestep_dense_degree, free, sym_onestep_end_f }
 
 #endif

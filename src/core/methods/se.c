@@ -64,54 +64,48 @@ se_step (void *state, sym_eval *ev, double t, double h, double tend,
          const double *y, double *ynext, double *yerr)
 {
   se_state *s = state;
-  int st, cont;
-  if ((st = sym_onestep_begin (&s->o, ev, t, h, tend, y, ynext, &cont)))
+  sym_trial v;
+  int st = sym_onestep_trial (&s->o, ev, t, h, tend, y, ynext, &v);
+  if (st)
     return st;
-  const int d = s->o.d;
-  sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
-  const double *q0 = tr->y0, *p0 = tr->y0 + d;
-  double *q1 = tr->y1, *p1 = tr->y1 + d;
-
+  const int d = v.d;
   if (s->o.separable)
     {
       if ((st = sym_recs_f0 (&s->o.r, ev)))
         return st;
       for (int i = 0; i < d; i++)
-        p1[i] = p0[i] + h * tr->f0[d + i];
+        v.p1[i] = v.p0[i] + h * v.tr->f0[d + i];
       if (s->o.second_order)
         {
           for (int i = 0; i < d; i++)
-            q1[i] = q0[i] + h * p1[i];
+            v.q1[i] = v.q0[i] + h * v.p1[i];
           return sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext);
         }
-      st = sym_fcache_f (&s->o.fc, ev, t, q0, p1);
+      st = sym_fcache_f (&s->o.fc, ev, t, v.q0, v.p1);
       if (st)
         return st;
       /* f_p at (t, q0) with p0 and with p1: the same if H is separable */
-      sym_sep_check (ev, t, d, tr->f0 + d, s->o.fc.fw + d);
+      sym_sep_check (ev, t, d, v.tr->f0 + d, s->o.fc.fw + d);
       for (int i = 0; i < d; i++)
-        q1[i] = q0[i] + h * s->o.fc.fw[i];
+        v.q1[i] = v.q0[i] + h * s->o.fc.fw[i];
     }
   else
     {
-      sym_kick kick = { d, &s->o.fc, &s->o.k[0], ev, t, h, h, tr->y0,
+      sym_kick kick = { d, &s->o.fc, &s->o.k[0], ev, t, h, h, v.tr->y0,
                         &s->o.pr[0] };
-      if ((st = sym_kick_solve (&kick, &s->o.r, cont, cu->y0 + d, s->x,
+      if ((st = sym_kick_solve (&kick, &s->o.r, v.cont, v.cu->y0 + d, s->x,
                                 s->scale, s->rv)))
         return st;
       /* the cache holds f at [q_k; P] */
-      memcpy (p1, s->x, (size_t) d * sizeof (double));
+      memcpy (v.p1, s->x, (size_t) d * sizeof (double));
       for (int i = 0; i < d; i++)
-        q1[i] = q0[i] + h * s->o.fc.fw[i];
+        v.q1[i] = v.q0[i] + h * s->o.fc.fw[i];
     }
   return sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext);
 }
 
-static const sym_stepper_type se_type = {
-  "se", se_alloc, sym_onestep_order, sym_onestep_set_tolerances,
-  se_step, sym_onestep_accept, sym_onestep_dense,
-  sym_onestep_dense_samples, sym_onestep_dense_degree, sym_onestep_free,
-  sym_onestep_end_f
-};
+static const sym_stepper_type se_type =
+  SYM_ONESTEP_TYPE ("se", se_alloc, sym_onestep_set_tolerances, se_step,
+                    sym_onestep_free);
 
 const sym_stepper_type *const sym_step_se = &se_type;

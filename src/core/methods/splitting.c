@@ -364,11 +364,8 @@ sp_set_tolerances (void *state, const sym_tolerances *tol)
   return SYM_EBADINPUT;
 }
 
-static const sym_stepper_type sp_type = {
-  "splitting", sp_alloc, sym_onestep_order, sp_set_tolerances,
-  sp_step, sym_onestep_accept, sym_onestep_dense,
-  sym_onestep_dense_samples, sym_onestep_dense_degree, sp_free,
-  sym_onestep_end_f
-};
+static const sym_stepper_type sp_type =
+  SYM_ONESTEP_TYPE ("splitting", sp_alloc, sp_set_tolerances, sp_step,
+                    sp_free);
 
 const sym_stepper_type *const sym_step_splitting = &sp_type;

@@ -213,48 +213,47 @@ sv_finish (sv_state *s, sym_eval *ev, int cont, double *yerr,
    step's end is not known (f_p(q_{k+1}) is never evaluated).  The aux
    of a record keeps q_{k+1/2} and f_q(p_{k+1}). */
 static int
-sv_position (sv_state *s, sym_eval *ev, int cont)
+sv_position (sv_state *s, sym_eval *ev, const sym_trial *v)
 {
-  const int d = s->o.d, so = s->o.second_order;
-  sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
-  const double t = tr->t, h = tr->h, hh = 0.5 * h;
-  const double *q0 = tr->y0, *p0 = tr->y0 + d, *fq = p0;
-  double *q1 = tr->y1, *p1 = tr->y1 + d, *qh = PH (tr), *fqe = FPE (tr, d);
+  const int d = v->d, so = s->o.second_order;
+  const double t = v->tr->t, h = v->tr->h, hh = 0.5 * h;
+  const double *fq = v->p0;
+  double *qh = PH (v->tr), *fqe = FPE (v->tr, d);
   int st;
   if (! so)
     {
-      if (cont)
-        fq = FPE (cu, d);
+      if (v->cont)
+        fq = FPE (v->cu, d);
       else
         {
           if ((st = sym_recs_f0 (&s->o.r, ev)))
             return st;
-          fq = tr->f0;
+          fq = v->tr->f0;
         }
       memcpy (s->fqa, fq, (size_t) d * sizeof (double));
     }
   for (int i = 0; i < d; i++)
-    qh[i] = q0[i] + hh * fq[i];
-  if ((st = sym_fcache_f (&s->o.fc, ev, t + hh, qh, p0)))     /* B */
+    qh[i] = v->q0[i] + hh * fq[i];
+  if ((st = sym_fcache_f (&s->o.fc, ev, t + hh, qh, v->p0)))  /* B */
     return st;
   /* f_q at p_k with q_k (or q_{k-1/2}) and with q_{k+1/2}: the same if H
      is separable (and T does not depend on t) */
   if (! so)
     sym_sep_check (ev, t, d, s->fqa, s->o.fc.fw);
   for (int i = 0; i < d; i++)
-    p1[i] = p0[i] + h * s->o.fc.fw[d + i];
+    v->p1[i] = v->p0[i] + h * s->o.fc.fw[d + i];
   if (so)
     {
       for (int i = 0; i < d; i++)
-        q1[i] = qh[i] + hh * p1[i];
+        v->q1[i] = qh[i] + hh * v->p1[i];
       return SYM_SUCCESS;
     }
-  if ((st = sym_fcache_f (&s->o.fc, ev, tr->tend, qh, p1)))  /* C */
+  if ((st = sym_fcache_f (&s->o.fc, ev, v->tr->tend, qh, v->p1)))  /* C */
     return st;
   for (int i = 0; i < d; i++)
     {
       fqe[i] = s->o.fc.fw[i];
-      q1[i] = qh[i] + hh * fqe[i];
+      v->q1[i] = qh[i] + hh * fqe[i];
     }
   return SYM_SUCCESS;
 }
@@ -264,51 +263,50 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
          const double *y, double *ynext, double *yerr)
 {
   sv_state *s = state;
-  int st, cont;
-  if ((st = sym_onestep_begin (&s->o, ev, t, h, tend, y, ynext, &cont)))
-    return st;
-  const int d = s->o.d;
-  sym_rec *tr = s->o.r.trial, *cu = s->o.r.cur;
-  const double *q0 = tr->y0, *p0 = tr->y0 + d;
-  double *q1 = tr->y1, *p1 = tr->y1 + d, *ph = PH (tr), *fpe = FPE (tr, d);
   const double hh = 0.5 * h;
+  sym_trial v;
+  int st = sym_onestep_trial (&s->o, ev, t, h, tend, y, ynext, &v);
+  if (st)
+    return st;
+  const int d = v.d;
+  double *ph = PH (v.tr), *fpe = FPE (v.tr, d);
   s->ev = ev;
   s->tk = t;
   s->hk = h;
-  s->yk = tr->y0;
+  s->yk = v.tr->y0;
 
   if (s->o.separable && s->position)
     {
-      if ((st = sv_position (s, ev, cont)))
+      if ((st = sv_position (s, ev, &v)))
         return st;
-      return sv_finish (s, ev, cont, yerr, ynext);
+      return sv_finish (s, ev, v.cont, yerr, ynext);
     }
   if (s->o.separable)
     {
       const double *fp;
-      if (cont)
-        fp = FPE (cu, d);
+      if (v.cont)
+        fp = FPE (v.cu, d);
       else
         {
           if ((st = sym_recs_f0 (&s->o.r, ev)))
             return st;
-          fp = tr->f0 + d;
+          fp = v.tr->f0 + d;
         }
       for (int i = 0; i < d; i++)
-        ph[i] = p0[i] + hh * fp[i];
+        ph[i] = v.p0[i] + hh * fp[i];
       if (s->o.second_order)
         for (int i = 0; i < d; i++)
-          q1[i] = q0[i] + h * ph[i];
+          v.q1[i] = v.q0[i] + h * ph[i];
       else
         {
-          st = sym_fcache_f (&s->o.fc, ev, t + hh, q0, ph);     /* A */
+          st = sym_fcache_f (&s->o.fc, ev, t + hh, v.q0, ph);     /* A */
           if (st)
             return st;
           for (int i = 0; i < d; i++)
-            q1[i] = q0[i] + h * s->o.fc.fw[i];
+            v.q1[i] = v.q0[i] + h * s->o.fc.fw[i];
           memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
         }
-      st = sym_fcache_f (&s->o.fc, ev, tr->tend, q1, ph);   /* B */
+      st = sym_fcache_f (&s->o.fc, ev, v.tr->tend, v.q1, ph);   /* B */
       if (st)
         return st;
       /* f_q at p_{k+1/2} with q0 and with q1: the same if H is separable
@@ -321,9 +319,9 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
       double *x = s->x;
       /* (1), started from the history of p_{k+1/2} over an explicit half
          kick (sym_kick_solve) */
-      sym_kick kick = { d, &s->o.fc, &s->o.k[0], ev, t, h, hh, tr->y0,
+      sym_kick kick = { d, &s->o.fc, &s->o.k[0], ev, t, h, hh, v.tr->y0,
                         &s->o.pr[0] };
-      if ((st = sym_kick_solve (&kick, &s->o.r, cont, PH (cu), x, s->scale,
+      if ((st = sym_kick_solve (&kick, &s->o.r, v.cont, PH (v.cu), x, s->scale,
                                 s->rv)))
         return st;
       /* the cache holds f at [q_k; P] */
@@ -338,35 +336,32 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
                                 s->o.sparse ? lsolve_q : NULL };
       double *base = s->o.pr[1].xb;
       for (int i = 0; i < d; i++)
-        base[i] = q0[i] + h * s->fqa[i];
-      st = sym_pred_solve (&s->o.k[1], &pq, ev, h, &s->o.pr[1], cont, h, 1,
-                           base, q0, x, s->scale, s->rv);
+        base[i] = v.q0[i] + h * s->fqa[i];
+      st = sym_pred_solve (&s->o.k[1], &pq, ev, h, &s->o.pr[1], v.cont, h, 1,
+                           base, v.q0, x, s->scale, s->rv);
       if (st)
         return st;
       sym_fcache_move (&s->o.fc, s->tk + s->hk, x, ph);
-      memcpy (q1, x, (size_t) d * sizeof (double));
+      memcpy (v.q1, x, (size_t) d * sizeof (double));
     }
   /* (3): the cache holds f at [q_{k+1}; p_{k+1/2}] on both paths */
   for (int i = 0; i < d; i++)
     {
       fpe[i] = s->o.fc.fw[d + i];
-      p1[i] = ph[i] + hh * s->o.fc.fw[d + i];
+      v.p1[i] = ph[i] + hh * s->o.fc.fw[d + i];
     }
   if (s->o.second_order)
     {
       /* f at the end is [p_{k+1}; f_p(q_{k+1})]: no call */
-      memcpy (tr->f1, p1, (size_t) d * sizeof (double));
-      memcpy (tr->f1 + d, fpe, (size_t) d * sizeof (double));
-      tr->have_f1 = 1;
+      memcpy (v.tr->f1, v.p1, (size_t) d * sizeof (double));
+      memcpy (v.tr->f1 + d, fpe, (size_t) d * sizeof (double));
+      v.tr->have_f1 = 1;
     }
-  return sv_finish (s, ev, cont, yerr, ynext);
+  return sv_finish (s, ev, v.cont, yerr, ynext);
 }
 
-static const sym_stepper_type sv_type = {
-  "sv", sv_alloc, sym_onestep_order, sym_onestep_set_tolerances,
-  sv_step, sym_onestep_accept, sym_onestep_dense,
-  sym_onestep_dense_samples, sym_onestep_dense_degree, sym_onestep_free,
-  sym_onestep_end_f
-};
+static const sym_stepper_type sv_type =
+  SYM_ONESTEP_TYPE ("sv", sv_alloc, sym_onestep_set_tolerances, sv_step,
+                    sym_onestep_free);
 
 const sym_stepper_type *const sym_step_sv = &sv_type;
