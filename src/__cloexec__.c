@@ -13,6 +13,8 @@
    The pipes the parallel package makes for a new process are made after
    this call, so that process still gets them.  Where descriptors cannot be
    listed (no /proc/self/fd) it marks 3 to 1023.  */
+/* dirfd, fcntl: POSIX.1-2008 (the build is -std=c99) */
+#define _POSIX_C_SOURCE 200809L
 #include "mex.h"
 
 #if defined(__unix__) || defined(__APPLE__)
