@@ -72,7 +72,8 @@
 ## (drift-kick-drift): the inner Verlet step, with Separable or SecondOrder.
 ## @item CompensatedSummation
 ## Explicit steps sum their updates with compensation: on by default for
-## every Method but Verlet's; @qcode{"off"} turns it off.
+## every Method but Verlet's, and for reversible steps; @qcode{"off"}
+## turns it off.
 ## @item Jacobian, HamiltonianHessFcn, JPattern
 ## Other sources of Newton's matrix, as in @code{odeSE}.
 ## @item Vectorized

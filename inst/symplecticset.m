@@ -39,7 +39,8 @@
 ## @item CompensatedSummation
 ## @code{odeSV}: @qcode{"on"} sums the updates of explicit steps with
 ## compensation.  Default @qcode{"on"} for the explicit steps of a
-## @code{Method} other than @qcode{"verlet"}, else @qcode{"off"}.
+## @code{Method} other than @qcode{"verlet"} and for reversible ones,
+## else @qcode{"off"}.
 ## @item VerletForm
 ## @code{odeSV}: @qcode{"velocity"} (kick-drift-kick, the default) or
 ## @qcode{"position"} (drift-kick-drift; explicit steps only).
@@ -128,7 +129,7 @@ function opts = symplecticset (varargin)
     printf ("          Separable:  {[\"off\"], \"on\"}\n");
     printf ("        SecondOrder:  {[\"off\"], \"on\"}\n");
     printf ("             Method:  string, [\"verlet\"] (odeSV)\n");
-    printf ("CompensatedSummation: {\"off\", \"on\"}, [on for Method's explicit steps]\n");
+    printf ("CompensatedSummation: {\"off\", \"on\"}, [on for Method's and reversible explicit steps]\n");
     printf ("         VerletForm:  {[\"velocity\"], \"position\"} (odeSV)\n");
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");

@@ -41,11 +41,16 @@ sv_parse (const char *solver, const mxArray *opts, void *own)
         }
     }
   /* on by default where it costs no call and no measurable time: the
-     explicit steps of a method other than Verlet (whose own stepper, with
-     its adaptive steps, has no compensated sums) */
+     explicit steps of a method other than Verlet, and Verlet's reversible
+     ones (a run retraced from its sol comes back to round-off).  Verlet's
+     fixed steps stay on its own stepper, whose runs continue to the bit */
+  static const char *const controls[] = { "standard", "reversible", NULL };
+  const mxArray *sc = symmex_field (solver, opts, "StepControl");
+  const int reversible = sc && symmex_word (solver, sc, "StepControl",
+                                            controls) == 1;
   const mxArray *c = symmex_field (solver, opts, "CompensatedSummation");
   o->compensated = c ? symmex_on_off (solver, c, "CompensatedSummation")
-                   : o->method != 0 && o->separable;
+                   : (o->method != 0 || reversible) && o->separable;
   static const char *const forms[] = { "velocity", "position", NULL };
   const mxArray *f = symmex_field (solver, opts, "VerletForm");
   o->position = f ? symmex_word (solver, f, "VerletForm", forms) == 1 : 0;
