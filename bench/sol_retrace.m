@@ -11,9 +11,9 @@ acc = @(t, q) -q / norm (q)^3;
 kep = @(t, y) [y(3:4); -y(1:2) / norm(y(1:2))^3];
 base = symplecticset ("StepControl", "reversible", "RelTol", 1e-4);
 so = symplecticset (base, "SecondOrder", "on");
-sc = symplecticset (so, "CompensatedSummation", "on");
+sc = symplecticset (so, "CompensatedSummation", "off");
 runs = {"odeSV SecondOrder", @odeSV, acc, so;
-        "odeSV SecondOrder, compensated", @odeSV, acc, sc;
+        "odeSV SecondOrder, sums plain", @odeSV, acc, sc;
         "odeSPVI (4,3)", @odeSPVI, kep, base;
         "odeSPVI (4,3), NewtonTol 1e-16", @odeSPVI, kep, ...
         symplecticset(base, "NewtonTol", 1e-16)};
