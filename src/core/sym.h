@@ -295,6 +295,8 @@ typedef struct {
   double newton_tol;   /* 0: SYM_NEWTON_TOL */
   int max_newton;      /* 0: SYM_NEWTON_MAXIT */
   int want_dense;      /* dense() will be called (the driver sets it) */
+  int reversible;      /* the steps are reversible ones (the driver sets
+                          it) */
   const void *own;
 } sym_method_opts;
 

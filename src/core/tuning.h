@@ -54,6 +54,9 @@
    error a stop leaves (it has a sign with a kept matrix) does not add up
    over many steps */
 #define SYM_FIXED_TOL 1e-2
+/* odeSPVI's reversible steps: a tenth of that, so that a run retraced
+   comes back nearer to round-off (bench/NOTES.md) */
+#define SYM_REVERSIBLE_TOL 1e-3
 /* odeSE and odeSV: a tenth of that (their finite-difference matrices
    contract more slowly and leave the stop nearer its bound) */
 #define SYM_FIXED_TOL_KEPT 1e-3

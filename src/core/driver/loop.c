@@ -445,6 +445,7 @@ sym_integrate (const sym_stepper_type *type, const sym_system *sys,
     r.mo = *mopts;
   r.mo.want_dense = r.mo.want_dense || o->ntout > 2 || o->refine > 1
                     || o->nevents > 0 || o->dense_out;
+  r.mo.reversible = r.reversible;
   sym_eval_init (&r.ev, sys);
   if (! (result = run_alloc (&r)))
     {

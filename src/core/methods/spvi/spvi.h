@@ -151,6 +151,8 @@ typedef struct {
   int nonlinear;       /* SYM_NONLINEAR_* */
   int stages;          /* SPVI_FULL, _STAGES or _STAGES_SPARSE */
   int adaptive;        /* set_tolerances was called */
+  int reversible;      /* reversible steps: solved further (a retraced
+                          run then comes back to round-off) */
   double est_rtol, est_atol;   /* the adaptive tolerances (atol: the
                                   smallest) */
   spvi_core lo, hi;

@@ -147,6 +147,7 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
   s->order = sym_spvi_order (n, m);
   s->hermite = n - 1 != m && s->order < 8;
   s->tol = opts && opts->newton_tol > 0 ? opts->newton_tol : SYM_NEWTON_TOL;
+  s->reversible = opts && opts->reversible;
   s->maxit = opts && opts->max_newton > 0 ? opts->max_newton
              : SYM_NEWTON_MAXIT;
   s->newmat = newmat;
@@ -352,7 +353,8 @@ spvi_step (void *state, sym_eval *ev, double t, double h, double tend,
   if (st)
     return st;
   spvi_predict_history (s, h);
-  const double tol_rf = SYM_FIXED_TOL * s->tol;
+  const double tol_rf = (s->reversible ? SYM_REVERSIBLE_TOL : SYM_FIXED_TOL)
+                        * s->tol;
   const double w = yerr && s->est_rtol > 0
                    ? error_floor (nn, y, s->est_rtol, s->est_atol) : 0.0;
   const double tol_lo = fmax (tol_rf, SYM_SPVI_EST_LO * w / S.all);
