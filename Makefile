@@ -29,7 +29,9 @@
 #                       bench/run_reversible.m (REVERSIBLE.md, its PNG),
 #                       bench/run_large.m (LARGE.md),
 #                       bench/run_ensemble.m (ENSEMBLE.md) and bench-core
-#   make bench-core     bench/core_cost.c, the core without Octave (CORE.md)
+#   make bench-core     bench/core_cost.c, the core without Octave, and
+#                       bench/gauss_loop.c, a plain Gauss loop (CORE.md)
+#   make bench-gauss    bench/gauss_loop.c alone, to standard output
 #   make clean
 #
 # src/Makefile builds the compiled gateways __odeSE__.mex etc. in src/;
@@ -159,8 +161,17 @@ build/bench/core_cost: bench/core_cost.c $(CORE_SRC) $(shell find src/core -name
 	@mkdir -p build/bench
 	$(CC) -std=c99 -Wall -O2 -Isrc/core -o $@ bench/core_cost.c $(CORE_SRC) $(CORE_LIBS)
 
-bench-core: deps build/bench/core_cost
+build/bench/gauss_loop: bench/gauss_loop.c
+	@mkdir -p build/bench
+	$(CC) -std=c99 -Wall -O2 -o $@ bench/gauss_loop.c -lm
+
+bench-core: deps build/bench/core_cost build/bench/gauss_loop
 	build/bench/core_cost bench/CORE.md
+	build/bench/gauss_loop bench/CORE.md
+
+# The plain Gauss collocation loop alone, to standard output.
+bench-gauss: build/bench/gauss_loop
+	build/bench/gauss_loop
 
 # Stage a clean copy (no build products) and pack it as DISTNAME/.  In a
 # git checkout only the files git tracks are packed (as they are in the
@@ -205,4 +216,4 @@ clean:
 	rm -f inst/*.mex
 
 .PHONY: all deps deps-memory setup demo check check-quick check-c check-octave check-blas valgrind \
-        check-memory bench bench-core dist install check-installed clean
+        check-memory bench bench-core bench-gauss dist install check-installed clean
