@@ -49,6 +49,11 @@ function y = symdeval (sol, t)
     error ("Octave:invalid-input-arg",
            "symdeval: SOL must be the struct of odeSE, odeSV or odeSPVI (with one output)");
   endif
+  if (numel (sol) != 1)
+    error ("Octave:invalid-input-arg",
+           "symdeval: SOL is a %dx%d struct array (an ensemble's sol): give one member's, symdeval (sol(k), T)",
+           rows (sol), columns (sol));
+  endif
   if (! isfield (sol, "dense"))
     error ("Octave:invalid-input-arg",
            "symdeval: SOL carries no dense output: call %s with the option Dense \"on\"",
@@ -170,3 +175,7 @@ endfunction
 %!error <T must be a real vector> symdeval (sol, "a")
 %!error <SOL carries no dense output: call odeSV with the option Dense "on"> symdeval (odeSV (@(t, y) [y(2); -y(1)], [0 1], [1; 0]), 0.5)
 %!error <Invalid call> symdeval (1)
+%!error <symdeval: SOL is a 1x2 struct array \(an ensemble's sol\): give one member's, symdeval \(sol\(k\), T\)>
+%! s2 = odeSV (@(t, y) [y(2,:); -y(1,:)], [0 1], [1 2; 0 0],
+%!             symplecticset ("TimeStepSize", 0.1, "Ensemble", "on", "Dense", "on"));
+%! symdeval (s2, 0.5);

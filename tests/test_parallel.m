@@ -203,6 +203,9 @@
 %!error <odeSV: OPTS sets both Parallel and parallel>
 %! op = symplecticset (o, "Parallel", 2);  op.parallel = 3;
 %! [t, Y] = odeSV (f, [0 1], Y0, op);
+%!error <odeSV: OPTS sets both Ensemble and ENSEMBLE>
+%! op = symplecticset (o, "Parallel", 2);  op.ENSEMBLE = "off";
+%! [t, Y] = odeSV (f, [0 1], Y0, op);
 %!error <odeSPVI: with Parallel, OutputFcn .* cannot follow>
 %! [t, Y] = odeSPVI (f, [0 1], Y0, symplecticset (o, "Parallel", 2, "OutputFcn", @(t, y, flag) false));
 ## no outputs: the plot would be odeplot's (the error comes before it)

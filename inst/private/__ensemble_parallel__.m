@@ -71,6 +71,14 @@ function varargout = __ensemble_parallel__ (name, varargin)
            "%s: Parallel must be a positive integer (the number of processes) or the connections pconnect returned, got %s",
            name, describe (P));
   endif
+  fn = fieldnames (opts);
+  given = fn(strcmpi (fn, "Ensemble"));
+  given = given(cellfun (@(f) ! isempty (opts.(f)), given));
+  if (numel (given) > 1)
+    error ("Octave:invalid-input-arg",
+           "%s: OPTS sets both %s and %s (names are matched in any case); give one of them",
+           name, given{1}, given{2});
+  endif
   if (! ensemble_on (opts))
     error ("Octave:invalid-input-arg", "%s: Parallel needs Ensemble on", name);
   endif
