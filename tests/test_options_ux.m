@@ -60,5 +60,20 @@
 %! x = odeSV (f, [0 1], y0, struct ("Events", @(t) t));
 %!error <odeSV: OutputFcn takes 2 arguments, but is called as OutputFcn \(t, y, flag\)>
 %! x = odeSV (f, [0 1], y0, struct ("OutputFcn", @(t, y) false));
+%!function out_nothing (t, y, flag)
+%!endfunction
+%!function v = event_value_only (t, y)
+%!  v = y(1);
+%!endfunction
+%!error <odeSV: the OutputFcn function must return one output, STOP \(true to end the run\), got 0>
+%! x = odeSV (f, [0 1], y0, struct ("OutputFcn", @out_nothing, "TimeStepSize", 0.1));
+%!error <odeSPVI: the Events function must return three outputs \[VALUE, ISTERMINAL, DIRECTION\], got 1>
+%! x = odeSPVI (f, [0 1], y0, struct ("Events", @event_value_only, "TimeStepSize", 0.1));
+%!test
+%! ## anonymous functions do not declare their outputs: they pass
+%! [t, y, te] = odeSV (f, [0 2], y0, struct ("TimeStepSize", 0.01,
+%!                     "Events", @(t, y) deal (y(1), 0, 0),
+%!                     "OutputFcn", @(t, y, flag) false));
+%! assert (te, ellipke (sin (0.5)^2), 1e-3);   # the pendulum's T/4 from 1 rad
 %!error <odeSV: StepDensityFcn takes 1 argument>
 %! x = odeSV (f, [0 1], y0, struct ("StepDensityFcn", @(t) 1, "StepControl", "reversible"));

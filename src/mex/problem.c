@@ -59,6 +59,31 @@ check_nargin (const symmex_ctx *c, const mxArray *f, const char *what,
                      k == 1 ? "" : "s", what, form, ps, follow);
 }
 
+/* Events must return [value, isterminal, direction], OutputFcn stop: one
+   that declares fewer outputs (nargout, where Octave knows it; -1 for
+   anonymous functions and varargout) is told at once, naming the option,
+   not by Octave's "called with too many outputs" at the first call */
+static void
+check_nargout (const symmex_ctx *c, const mxArray *f, const char *what,
+               int need, const char *outs)
+{
+  if (! f)
+    return;
+  mxArray *in[1] = { (mxArray *) f }, *out[1] = { NULL };
+  mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "nargout");
+  if (ex)
+    {
+      mxDestroyArray (ex);
+      return;
+    }
+  const double k = mxIsNumeric (out[0]) ? mxGetScalar (out[0]) : -1;
+  mxDestroyArray (out[0]);
+  if (k < 0 || k >= need)
+    return;
+  mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the %s function must return %s, "
+                     "got %g", c->solver, what, outs, k);
+}
+
 /* SecondOrder: FCN (t, q) with the d positions alone.  An FCN written for
    y = [q; p] indexes past q at its first call: that error is said as
    the solver's, with the original message, rather than Octave's alone.
@@ -367,6 +392,10 @@ symmex_problem (const char *solver, const symmex_args *a, symmex_opts *o,
   check_nargin (c, o->hessfcn, "HamiltonianHessFcn", "t, y");
   check_nargin (c, o->events, "Events", "t, y");
   check_nargin (c, o->outputfcn, "OutputFcn", "t, y, flag");
+  check_nargout (c, o->events, "Events", 3,
+                 "three outputs [VALUE, ISTERMINAL, DIRECTION]");
+  check_nargout (c, o->outputfcn, "OutputFcn", 1,
+                 "one output, STOP (true to end the run)");
   check_nargin (c, o->reversible ? o->densityfcn : NULL, "StepDensityFcn",
                 "t, y");
   check_nargin (c, o->hamiltonian, "Hamiltonian", "t, y");
