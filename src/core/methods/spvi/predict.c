@@ -343,21 +343,26 @@ spvi_predict_history (spvi_state *s, double h)
   const double *w;
   const float *const dh = s->dhist;
   const double d0 = s->dscale[0];
+  double *v = s->hw;
   for (int L = 0; L < s->nhist && L <= SYM_SPVI_HIST; L++)
     {
-      double e = 0.0, c[SYM_SPVI_HIST];
+      /* by components innermost (long loops), each v_i summed in the
+         order of l */
       w = sym_extrap_weights (L);
-      for (int l = 0; l < L; l++)
-        c[l] = w[l] * s->dscale[l + 1];
       for (int i = 0; i < N; i++)
+        v[i] = d0 * dh[i];
+      for (int l = 0; l < L; l++)
         {
-          double v = d0 * dh[i];
-          for (int l = 0; l < L; l++)
-            v -= c[l] * dh[(size_t) (l + 1) * N + i];
-          /* fmax (e, |v|), inline: a NaN v leaves e */
-          if (fabs (v) > e)
-            e = fabs (v);
+          const double c = w[l] * s->dscale[l + 1];
+          const float *dl = dh + (size_t) (l + 1) * N;
+          for (int i = 0; i < N; i++)
+            v[i] -= c * dl[i];
         }
+      double e = 0.0;
+      for (int i = 0; i < N; i++)
+        /* fmax (e, |v|), inline: a NaN v leaves e */
+        if (fabs (v[i]) > e)
+          e = fabs (v[i]);
       if (e < best)
         {
           best = e;

@@ -180,6 +180,7 @@ typedef struct {
   double dscale[SYM_SPVI_HIST + 1];
   double *xp;          /* the trial's polynomial prediction of x
                           (predict.c), for dhist when it is accepted */
+  double *hw;          /* N: work of spvi_predict_history */
   int nhist;
   double hhist;
   /* the largest sizes of q and of p in the steps solved so far */

@@ -78,6 +78,7 @@ spvi_free (void *state)
   sym_free (s->pc);
   sym_free (s->dhist);
   sym_free (s->xp);
+  sym_free (s->hw);
   sym_free (s);
 }
 
@@ -185,10 +186,11 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
       s->gz = sym_calloc (s->ng, sizeof (double));
       s->gw = sym_calloc (s->ng, sizeof (double));
       s->xp = sym_calloc (s->lo.N, sizeof (double));
+      s->hw = sym_calloc (s->lo.N, sizeof (double));
       s->dhist = sym_calloc ((size_t) (SYM_SPVI_HIST + 1) * s->lo.N,
                              sizeof (float));
       if (! s->xi || ! s->vinv || ! s->f0 || ! s->lv || ! s->dlv || ! s->cb
-          || ! s->vq || ! s->dhist || ! s->xp || ! s->gz || ! s->gw || ! s->ach
+          || ! s->vq || ! s->dhist || ! s->xp || ! s->hw || ! s->gz || ! s->gw || ! s->ach
           || ! s->pz || ! s->pw || ! s->pc)
         st = SYM_ENOMEM;
       if (! st)
