@@ -137,7 +137,7 @@ spvi_eval_shift (spvi_core *c, const double *x)
         {
           double v = 0.0;
           for (int i = 0; i < c->N; i++)
-            v = fmax (v, fabs (x[i] - c->xfo[i]));
+            v = sym_fmax_acc (v, fabs (x[i] - c->xfo[i]));
           c->dxn[c->ndx++] = v;
         }
     }

@@ -129,15 +129,16 @@ predict_sane (const spvi_state *s, const spvi_rec *r, double rho,
   const double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
   double prev = 0.0, dev = 0.0;
   for (int k = 0; k < 2 * d; k++)
-    prev = fmax (prev, fabs (r->y1[k] - r->y0[k]));
+    prev = sym_fmax_acc (prev, fabs (r->y1[k] - r->y0[k]));
   for (int k = 0; k < d; k++)
     {
       double v = 0.0;
       for (int i = 1; i < n; i++)
         v += fabs (a[(size_t) (i - 1) * d + k]);
-      dev = fmax (dev, v);
+      dev = sym_fmax_acc (dev, v);
       for (int j = 0; j < m; j++)
-        dev = fmax (dev, fabs (P[(size_t) j * d + k] - y[d + k]));
+        dev = sym_fmax_acc (dev,
+                           fabs (P[(size_t) j * d + k] - y[d + k]));
     }
   return isfinite (dev) && dev <= SYM_SPVI_PRED_SANE * (1.0 + fabs (rho)) * prev;
 }
@@ -243,8 +244,8 @@ start_scale (spvi_state *s, const double *y, double h, int adaptive)
       pa[k] = fabs (y[d + k]);
       for (int j = 0; j < m; j++)
         pa[k] = fmax (pa[k], fabs (P[(size_t) j * d + k]));
-      sq = fmax (sq, qa[k]);
-      sp = fmax (sp, pa[k]);
+      sq = sym_fmax_acc (sq, qa[k]);
+      sp = sym_fmax_acc (sp, pa[k]);
     }
   spvi_scale S;
   S.all = fmax (sq, sp) > 0 ? fmax (sq, sp) : 1.0;

@@ -190,7 +190,8 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
       s->dhist = sym_calloc ((size_t) (SYM_SPVI_HIST + 1) * s->lo.N,
                              sizeof (float));
       if (! s->xi || ! s->vinv || ! s->f0 || ! s->lv || ! s->dlv || ! s->cb
-          || ! s->vq || ! s->dhist || ! s->xp || ! s->hw || ! s->gz || ! s->gw || ! s->ach
+          || ! s->vq || ! s->dhist || ! s->xp || ! s->hw || ! s->gz
+          || ! s->gw || ! s->ach
           || ! s->pz || ! s->pw || ! s->pc)
         st = SYM_ENOMEM;
       if (! st)
@@ -404,8 +405,8 @@ spvi_accept (void *state)
          at any size of the data */
       double big = 0.0;
       for (int i = 0; i < N; i++)
-        big = fmax (big, fabs ((i < na ? tr->a[i] : tr->P[i - na])
-                               - s->xp[i]));
+        big = sym_fmax_acc (big, fabs ((i < na ? tr->a[i] : tr->P[i - na])
+                                       - s->xp[i]));
       s->dscale[0] = big > 0.0 && isfinite (big) ? big : 1.0;
       for (int i = 0; i < N; i++)
         s->dhist[i] = (float) (((i < na ? tr->a[i] : tr->P[i - na])
