@@ -87,12 +87,17 @@ predict_modes (spvi_state *s, const spvi_rec *r, double zmax, double ynorm)
   const size_t na = (size_t) (n - 1) * d;
   const int nl = n > m + 2 ? n : m + 2;
   memcpy (s->ach, r->a, na * sizeof (double));
-  sym_legendre (nl, zmax, s->lv, s->dlv);
-  double amp = 0.0;
-  for (int i = 1; i < n; i++)
-    amp += fabs (s->lv[i]) + 1.0;
-  for (int i = 0; i < m + 2; i++)
-    amp += (2.0 * i + 1.0) * fabs (s->lv[i]);
+  double amp = s->pt_amp;
+  if (! s->pt_ok)
+    {
+      sym_legendre (nl, zmax, s->lv, s->dlv);
+      amp = 0.0;
+      for (int i = 1; i < n; i++)
+        amp += fabs (s->lv[i]) + 1.0;
+      for (int i = 0; i < m + 2; i++)
+        amp += (2.0 * i + 1.0) * fabs (s->lv[i]);
+      s->pt_amp = amp;
+    }
   if (! (amp * fmax (r->noise_q, r->noise_p) > SYM_SPVI_PRED_NOISE * ynorm))
     return m + 1;
   int kq = top_mode (r->a, n - 1, d, 0, 0, r->noise_q) + 1;
@@ -153,10 +158,34 @@ predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
 {
   const int d = s->d, n = s->n, m = s->m;
   double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
+  if (! (s->pt_ok && z0 == s->pt_z0 && rho == s->pt_rho))
+    {
+      /* the basis values at this (z0, rho), as spvi_modes_dq and
+         spvi_rec_p evaluate them */
+      s->pt_ok = 0;
+      for (int l = 0; l < n; l++)
+        {
+          sym_legendre (n, z0 + rho * (s->xi[l] + 1.0), s->lv, s->dlv);
+          for (int i = 1; i < n; i++)
+            s->pt_q[l * n + i] = s->lv[i] - ((i % 2) ? -1.0 : 1.0);
+        }
+      for (int j = 0; j < m; j++)
+        sym_lagrange_basis (m + 2, s->lo.xb, s->lo.bw,
+                            z0 + rho * (s->lo.z[j] + 1.0),
+                            s->pt_p + (size_t) j * (m + 2));
+    }
   int kp = predict_modes (s, r, z0 + 2.0 * fabs (rho), ynorm);
+  s->pt_z0 = z0;
+  s->pt_rho = rho;
+  s->pt_ok = 1;
   for (int l = 0; l < n; l++)
-    spvi_modes_dq (s, s->ach, z0 + rho * (s->xi[l] + 1.0),
-              s->vq + (size_t) l * d);
+    for (int k = 0; k < d; k++)
+      {
+        double v = 0.0;
+        for (int i = 1; i < n; i++)
+          v += s->ach[(size_t) (i - 1) * d + k] * s->pt_q[l * n + i];
+        s->vq[(size_t) l * d + k] = v;
+      }
   /* q(z) - q(z0) of the old step, the new step's increments; the
      constant part drops out of a_i, i >= 1 */
   for (int i = 1; i < n; i++)
@@ -173,7 +202,15 @@ predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
       double z = z0 + rho * (s->lo.z[j] + 1.0);
       if (kp > m)
         {
-          spvi_rec_p (s, r, z, P + (size_t) j * d);
+          /* spvi_rec_p at z */
+          const double *cb = s->pt_p + (size_t) j * (m + 2);
+          for (int k = 0; k < d; k++)
+            {
+              double v = cb[0] * r->y0[d + k] + cb[m + 1] * r->y1[d + k];
+              for (int l = 0; l < m; l++)
+                v += cb[l + 1] * r->P[(size_t) l * d + k];
+              P[(size_t) j * d + k] = v;
+            }
           continue;
         }
       sym_legendre (kp + 1, z, s->lv, s->dlv);

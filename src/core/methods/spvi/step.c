@@ -79,6 +79,8 @@ spvi_free (void *state)
   sym_free (s->dhist);
   sym_free (s->xp);
   sym_free (s->hw);
+  sym_free (s->pt_q);
+  sym_free (s->pt_p);
   sym_free (s);
 }
 
@@ -187,10 +189,12 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
       s->gw = sym_calloc (s->ng, sizeof (double));
       s->xp = sym_calloc (s->lo.N, sizeof (double));
       s->hw = sym_calloc (s->lo.N, sizeof (double));
+      s->pt_q = sym_calloc ((size_t) n * n, sizeof (double));
+      s->pt_p = sym_calloc ((size_t) m * (m + 2), sizeof (double));
       s->dhist = sym_calloc ((size_t) (SYM_SPVI_HIST + 1) * s->lo.N,
                              sizeof (float));
       if (! s->xi || ! s->vinv || ! s->f0 || ! s->lv || ! s->dlv || ! s->cb
-          || ! s->vq || ! s->dhist || ! s->xp || ! s->hw || ! s->gz
+          || ! s->vq || ! s->dhist || ! s->xp || ! s->hw || ! s->pt_q || ! s->pt_p || ! s->gz
           || ! s->gw || ! s->ach
           || ! s->pz || ! s->pw || ! s->pc)
         st = SYM_ENOMEM;
