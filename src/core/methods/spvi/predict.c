@@ -376,20 +376,41 @@ spvi_predict_history (spvi_state *s, double h)
   if (s->n - 1 != s->m || ! tr->cont || s->nhist < 2
       || ! sym_same_step (h, s->hhist))
     return;
-  /* the order whose prediction of the newest error from the ones
-     before erred least (D_L is that error), then the extrapolation of
-     that order: the sum of D_0..D_(L-1) (Newton's backward formula) */
   int best_l = 0;
   double best = INFINITY;
+  const double *w;
+  const float *const dh = s->dhist;
+  const double d0 = s->dscale[0];
+  double *v = s->hw;
   for (int L = 0; L < s->nhist && L <= SYM_SPVI_HIST; L++)
-    if (s->dmax[L] < best)
-      {
-        best = s->dmax[L];
-        best_l = L;
-      }
+    {
+      /* by components innermost (long loops), each v_i summed in the
+         order of l */
+      w = sym_extrap_weights (L);
+      for (int i = 0; i < N; i++)
+        v[i] = d0 * dh[i];
+      for (int l = 0; l < L; l++)
+        {
+          const double c = w[l] * s->dscale[l + 1];
+          const float *dl = dh + (size_t) (l + 1) * N;
+          for (int i = 0; i < N; i++)
+            v[i] -= c * dl[i];
+        }
+      double e = 0.0;
+      for (int i = 0; i < N; i++)
+        /* fmax (e, |v|), inline: a NaN v leaves e */
+        if (fabs (v[i]) > e)
+          e = fabs (v[i]);
+      if (e < best)
+        {
+          best = e;
+          best_l = L;
+        }
+    }
+  w = sym_extrap_weights (best_l);
   for (int l = 0; l < best_l; l++)
     for (int i = 0; i < N; i++)
-      s->lo.x[i] += s->dscale[l] * s->dhist[(size_t) l * N + i];
+      s->lo.x[i] += w[l] * s->dscale[l] * s->dhist[(size_t) l * N + i];
 }
 
 /* The accuracy of the solved a and P of r, by tol (pairs n - 1 = m) or

@@ -171,21 +171,16 @@ typedef struct {
   double *ach;         /* (n - 1) d: q's modes a_i */
   double *pz, *pw;     /* m + 2 Gauss points and weights */
   double *pc;          /* (m + 2) d: p's Legendre coefficients */
-  /* errors y_l of the polynomial prediction (solution - prediction) of
-     the last nhist accepted steps (y_0 the newest; all continued steps
-     of size hhist), as their backward differences: level k holds
-     D_k = sum_l (-1)^l binomial (k, l) y_l, k < nhist, SYM_SPVI_HIST + 1
-     levels of N.  Each step's table is the last one's and its new y_0
-     (D_k = D_(k-1) - the last D_(k-1)), in O(N) per level */
+  /* errors of the polynomial prediction (solution - prediction) of the
+     last nhist accepted steps, newest first, SYM_SPVI_HIST + 1 of N each;
+     all continued steps of size hhist */
   float *dhist;        /* (single precision, in units of dscale: they
                           only correct a start, and held a large part of
                           a large system's memory) */
   double dscale[SYM_SPVI_HIST + 1];
-  double dmax[SYM_SPVI_HIST + 1];  /* max_i |D_k,i| (a NaN left out): the
-                          error of the order-k prediction of y_0 */
   double *xp;          /* the trial's polynomial prediction of x
                           (predict.c), for dhist when it is accepted */
-  double *hw;          /* 2N: work of spvi_accept */
+  double *hw;          /* N: work of spvi_predict_history */
   /* the basis values predict_poly evaluates at its points, for (z0, rho)
      (pt_ok): the same at every continued step of a fixed h */
   double pt_z0, pt_rho, pt_amp;

@@ -188,7 +188,7 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
       s->gz = sym_calloc (s->ng, sizeof (double));
       s->gw = sym_calloc (s->ng, sizeof (double));
       s->xp = sym_calloc (s->lo.N, sizeof (double));
-      s->hw = sym_calloc (2 * (size_t) s->lo.N, sizeof (double));
+      s->hw = sym_calloc (s->lo.N, sizeof (double));
       s->pt_q = sym_calloc ((size_t) n * n, sizeof (double));
       s->pt_p = sym_calloc ((size_t) m * (m + 2), sizeof (double));
       s->dhist = sym_calloc ((size_t) (SYM_SPVI_HIST + 1) * s->lo.N,
@@ -402,32 +402,21 @@ spvi_accept (void *state)
     {
       if (! (s->nhist > 0 && sym_same_step (tr->h, s->hhist)))
         s->nhist = 0;
-      /* the new differences level by level: cur = the new D_(k-1),
-         nxt = the new D_k from it and the last D_(k-1) */
-      double *cur = s->hw, *nxt = s->hw + N;
-      const int top = s->nhist < SYM_SPVI_HIST ? s->nhist : SYM_SPVI_HIST;
+      memmove (s->dhist + N, s->dhist,
+               (size_t) SYM_SPVI_HIST * N * sizeof (float));
+      memmove (s->dscale + 1, s->dscale, SYM_SPVI_HIST * sizeof (double));
+      /* in units of its largest error: single precision holds its range
+         at any size of the data */
+      double big = 0.0;
       for (int i = 0; i < N; i++)
-        cur[i] = (i < na ? tr->a[i] : tr->P[i - na]) - s->xp[i];
-      for (int k = 0; k <= top; k++)
-        {
-          float *lev = s->dhist + (size_t) k * N;
-          if (k < top)
-            for (int i = 0; i < N; i++)
-              nxt[i] = cur[i] - s->dscale[k] * lev[i];
-          /* in units of its largest value: single precision holds its
-             range at any size of the data */
-          double big = 0.0;
-          for (int i = 0; i < N; i++)
-            big = sym_fmax_acc (big, fabs (cur[i]));
-          s->dmax[k] = big;
-          s->dscale[k] = big > 0.0 && isfinite (big) ? big : 1.0;
-          for (int i = 0; i < N; i++)
-            lev[i] = (float) (cur[i] / s->dscale[k]);
-          double *tmp = cur;
-          cur = nxt;
-          nxt = tmp;
-        }
-      s->nhist = top + 1;
+        big = sym_fmax_acc (big, fabs ((i < na ? tr->a[i] : tr->P[i - na])
+                                       - s->xp[i]));
+      s->dscale[0] = big > 0.0 && isfinite (big) ? big : 1.0;
+      for (int i = 0; i < N; i++)
+        s->dhist[i] = (float) (((i < na ? tr->a[i] : tr->P[i - na])
+                                - s->xp[i]) / s->dscale[0]);
+      if (s->nhist <= SYM_SPVI_HIST)
+        s->nhist++;
       s->hhist = tr->h;
     }
   else
