@@ -175,8 +175,30 @@ quad_stop (sym_newton *nw, int k, double dxn, double dxold)
   return 0;
 }
 
+/* The rate of the last solve, floored: a tiny carried rate would accept
+   a first correction far above round-off */
+static double
+carried_eta (const sym_newton *nw)
+{
+  return fmax (pow (fmax (nw->eta, DBL_EPSILON), SYM_NEWTON_ETA_POW),
+               SYM_NEWTON_ETA_MIN);
+}
+
+/* Whether at rate theta (< 1) the nleft iterations left cannot bring the
+   error after dxn below tol: theta^nleft / (1 - theta) dxn > tol.  For
+   nleft >= 2 theta^nleft <= theta^2, so a bound below tol / 2 (room for
+   the rounding) answers without pow, as it would */
+static int
+too_slow (double theta, int nleft, double dxn, double tol)
+{
+  if (nleft >= 2 && theta * theta / (1.0 - theta) * dxn <= 0.5 * tol)
+    return 0;
+  return pow (theta, nleft) / (1.0 - theta) * dxn > tol;
+}
+
 /* One sweep of the simplified iteration with the matrix in nw->lu, from
-   the rate estimate *eta: SYM_SUCCESS, a callback's status, or
+   the rate estimate *eta (negative: carried_eta, made when the first
+   correction's test needs it): SYM_SUCCESS, a callback's status, or
    SWEEP_SLOW (*diverged: diverging) */
 static int
 simplified_sweep (sym_newton *nw, const sym_newton_problem *p, double *x,
@@ -217,7 +239,12 @@ simplified_sweep (sym_newton *nw, const sym_newton_problem *p, double *x,
             }
           *eta = theta / (1.0 - theta);
         }
-      if (*eta * dxn <= nw->tol || dxn <= floor_tol)
+      /* carried_eta >= SYM_NEWTON_ETA_MIN: above that bound the test
+         fails whatever its value, which no later test reads */
+      if (*eta < 0.0
+          && (dxn <= floor_tol || SYM_NEWTON_ETA_MIN * dxn <= nw->tol))
+        *eta = carried_eta (nw);
+      if ((*eta >= 0.0 && *eta * dxn <= nw->tol) || dxn <= floor_tol)
         {
           nw->theta = theta;
           nw->eta = *eta;
@@ -225,8 +252,7 @@ simplified_sweep (sym_newton *nw, const sym_newton_problem *p, double *x,
         }
       /* predicted failure: at this rate the iterations left cannot reach
          tol */
-      if (k > 0
-          && pow (theta, nw->maxit - 1 - k) / (1.0 - theta) * dxn > nw->tol)
+      if (k > 0 && too_slow (theta, nw->maxit - 1 - k, dxn, nw->tol))
         return SWEEP_SLOW;
       dxold = dxn;
     }
@@ -238,10 +264,7 @@ solve_simplified (sym_newton *nw, const sym_newton_problem *p, double *x,
                   const double *scale, sym_counters *c)
 {
   int st, refreshes = 0, diverged;
-  /* the rate of the last solve, floored: a tiny carried rate would accept
-     a first correction far above round-off */
-  double eta = fmax (pow (fmax (nw->eta, DBL_EPSILON), SYM_NEWTON_ETA_POW),
-                     SYM_NEWTON_ETA_MIN);
+  double eta = -1.0;   /* carried_eta, when needed */
   nw->fresh = 0;
   nw->one = 0;
   nw->kq_new = 0;

@@ -9,6 +9,14 @@
 
 #include "../sym.h"
 
+/* fmax (m, x) for an m that is not NaN (a NaN x leaves m), inline: the
+   running maxima of the hot loops, where the library call costs */
+static inline double
+sym_fmax_acc (double m, double x)
+{
+  return x > m ? x : m;
+}
+
 /* ---------------------------------------------------------------- vectors */
 double sym_norm_inf (int n, const double *v);
 int sym_same_vec (int n, const double *a, const double *b);

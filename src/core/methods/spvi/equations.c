@@ -137,7 +137,7 @@ spvi_eval_shift (spvi_core *c, const double *x)
         {
           double v = 0.0;
           for (int i = 0; i < c->N; i++)
-            v = fmax (v, fabs (x[i] - c->xfo[i]));
+            v = sym_fmax_acc (v, fabs (x[i] - c->xfo[i]));
           c->dxn[c->ndx++] = v;
         }
     }
@@ -208,7 +208,8 @@ spvi_end (spvi_core *c, double *yend)
   const double hh = 0.5 * c->h;
   const double *yk = c->yk;
   const double *a = c->x, *P = c->x + (size_t) (n - 1) * d;
-  for (int j = 0; j < m; j++)
+  /* the fixed point's J is 0: no move */
+  for (int j = 0; j < m && ! c->fp; j++)
     {
       double *Fj = c->F + (size_t) j * nn;
       double *dy = c->Y + (size_t) j * nn;      /* work */

@@ -87,12 +87,17 @@ predict_modes (spvi_state *s, const spvi_rec *r, double zmax, double ynorm)
   const size_t na = (size_t) (n - 1) * d;
   const int nl = n > m + 2 ? n : m + 2;
   memcpy (s->ach, r->a, na * sizeof (double));
-  sym_legendre (nl, zmax, s->lv, s->dlv);
-  double amp = 0.0;
-  for (int i = 1; i < n; i++)
-    amp += fabs (s->lv[i]) + 1.0;
-  for (int i = 0; i < m + 2; i++)
-    amp += (2.0 * i + 1.0) * fabs (s->lv[i]);
+  double amp = s->pt_amp;
+  if (! s->pt_ok)
+    {
+      sym_legendre (nl, zmax, s->lv, s->dlv);
+      amp = 0.0;
+      for (int i = 1; i < n; i++)
+        amp += fabs (s->lv[i]) + 1.0;
+      for (int i = 0; i < m + 2; i++)
+        amp += (2.0 * i + 1.0) * fabs (s->lv[i]);
+      s->pt_amp = amp;
+    }
   if (! (amp * fmax (r->noise_q, r->noise_p) > SYM_SPVI_PRED_NOISE * ynorm))
     return m + 1;
   int kq = top_mode (r->a, n - 1, d, 0, 0, r->noise_q) + 1;
@@ -129,15 +134,16 @@ predict_sane (const spvi_state *s, const spvi_rec *r, double rho,
   const double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
   double prev = 0.0, dev = 0.0;
   for (int k = 0; k < 2 * d; k++)
-    prev = fmax (prev, fabs (r->y1[k] - r->y0[k]));
+    prev = sym_fmax_acc (prev, fabs (r->y1[k] - r->y0[k]));
   for (int k = 0; k < d; k++)
     {
       double v = 0.0;
       for (int i = 1; i < n; i++)
         v += fabs (a[(size_t) (i - 1) * d + k]);
-      dev = fmax (dev, v);
+      dev = sym_fmax_acc (dev, v);
       for (int j = 0; j < m; j++)
-        dev = fmax (dev, fabs (P[(size_t) j * d + k] - y[d + k]));
+        dev = sym_fmax_acc (dev,
+                           fabs (P[(size_t) j * d + k] - y[d + k]));
     }
   return isfinite (dev) && dev <= SYM_SPVI_PRED_SANE * (1.0 + fabs (rho)) * prev;
 }
@@ -152,10 +158,34 @@ predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
 {
   const int d = s->d, n = s->n, m = s->m;
   double *a = s->lo.x, *P = s->lo.x + (size_t) (n - 1) * d;
+  if (! (s->pt_ok && z0 == s->pt_z0 && rho == s->pt_rho))
+    {
+      /* the basis values at this (z0, rho), as spvi_modes_dq and
+         spvi_rec_p evaluate them */
+      s->pt_ok = 0;
+      for (int l = 0; l < n; l++)
+        {
+          sym_legendre (n, z0 + rho * (s->xi[l] + 1.0), s->lv, s->dlv);
+          for (int i = 1; i < n; i++)
+            s->pt_q[l * n + i] = s->lv[i] - ((i % 2) ? -1.0 : 1.0);
+        }
+      for (int j = 0; j < m; j++)
+        sym_lagrange_basis (m + 2, s->lo.xb, s->lo.bw,
+                            z0 + rho * (s->lo.z[j] + 1.0),
+                            s->pt_p + (size_t) j * (m + 2));
+    }
   int kp = predict_modes (s, r, z0 + 2.0 * fabs (rho), ynorm);
+  s->pt_z0 = z0;
+  s->pt_rho = rho;
+  s->pt_ok = 1;
   for (int l = 0; l < n; l++)
-    spvi_modes_dq (s, s->ach, z0 + rho * (s->xi[l] + 1.0),
-              s->vq + (size_t) l * d);
+    for (int k = 0; k < d; k++)
+      {
+        double v = 0.0;
+        for (int i = 1; i < n; i++)
+          v += s->ach[(size_t) (i - 1) * d + k] * s->pt_q[l * n + i];
+        s->vq[(size_t) l * d + k] = v;
+      }
   /* q(z) - q(z0) of the old step, the new step's increments; the
      constant part drops out of a_i, i >= 1 */
   for (int i = 1; i < n; i++)
@@ -172,7 +202,15 @@ predict_poly (spvi_state *s, const spvi_rec *r, double z0, double rho,
       double z = z0 + rho * (s->lo.z[j] + 1.0);
       if (kp > m)
         {
-          spvi_rec_p (s, r, z, P + (size_t) j * d);
+          /* spvi_rec_p at z */
+          const double *cb = s->pt_p + (size_t) j * (m + 2);
+          for (int k = 0; k < d; k++)
+            {
+              double v = cb[0] * r->y0[d + k] + cb[m + 1] * r->y1[d + k];
+              for (int l = 0; l < m; l++)
+                v += cb[l + 1] * r->P[(size_t) l * d + k];
+              P[(size_t) j * d + k] = v;
+            }
           continue;
         }
       sym_legendre (kp + 1, z, s->lv, s->dlv);
@@ -243,8 +281,8 @@ start_scale (spvi_state *s, const double *y, double h, int adaptive)
       pa[k] = fabs (y[d + k]);
       for (int j = 0; j < m; j++)
         pa[k] = fmax (pa[k], fabs (P[(size_t) j * d + k]));
-      sq = fmax (sq, qa[k]);
-      sp = fmax (sp, pa[k]);
+      sq = sym_fmax_acc (sq, qa[k]);
+      sp = sym_fmax_acc (sp, pa[k]);
     }
   spvi_scale S;
   S.all = fmax (sq, sp) > 0 ? fmax (sq, sp) : 1.0;
@@ -343,21 +381,26 @@ spvi_predict_history (spvi_state *s, double h)
   const double *w;
   const float *const dh = s->dhist;
   const double d0 = s->dscale[0];
+  double *v = s->hw;
   for (int L = 0; L < s->nhist && L <= SYM_SPVI_HIST; L++)
     {
-      double e = 0.0, c[SYM_SPVI_HIST];
+      /* by components innermost (long loops), each v_i summed in the
+         order of l */
       w = sym_extrap_weights (L);
-      for (int l = 0; l < L; l++)
-        c[l] = w[l] * s->dscale[l + 1];
       for (int i = 0; i < N; i++)
+        v[i] = d0 * dh[i];
+      for (int l = 0; l < L; l++)
         {
-          double v = d0 * dh[i];
-          for (int l = 0; l < L; l++)
-            v -= c[l] * dh[(size_t) (l + 1) * N + i];
-          /* fmax (e, |v|), inline: a NaN v leaves e */
-          if (fabs (v) > e)
-            e = fabs (v);
+          const double c = w[l] * s->dscale[l + 1];
+          const float *dl = dh + (size_t) (l + 1) * N;
+          for (int i = 0; i < N; i++)
+            v[i] -= c * dl[i];
         }
+      double e = 0.0;
+      for (int i = 0; i < N; i++)
+        /* fmax (e, |v|), inline: a NaN v leaves e */
+        if (fabs (v[i]) > e)
+          e = fabs (v[i]);
       if (e < best)
         {
           best = e;

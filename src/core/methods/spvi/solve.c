@@ -55,8 +55,9 @@ move_error (spvi_core *c, double S)
           size_t ip = (size_t) (n - 1) * d + (size_t) j * d + k;
           dy[k] = v1;
           dy[d + k] = af[ip] - ao[ip];
-          n1 = fmax (n1, fmax (fabs (v1), fabs (dy[d + k])));
-          n2 = fmax (n2, fmax (fabs (v2), fabs (a[ip] - af[ip])));
+          n1 = sym_fmax_acc (sym_fmax_acc (n1, fabs (v1)), fabs (dy[d + k]));
+          n2 = sym_fmax_acc (sym_fmax_acc (n2, fabs (v2)),
+                             fabs (a[ip] - af[ip]));
         }
       if (n2 == 0.0)
         continue;
@@ -68,7 +69,7 @@ move_error (spvi_core *c, double S)
         {
           double v = c->F[(size_t) j * nn + d + k]
                      - c->Fo[(size_t) j * nn + d + k] - jdy[k];
-          mis = fmax (mis, fabs (v));
+          mis = sym_fmax_acc (mis, fabs (v));
         }
       e += c->w[j] * mis * (n2 / n1);
     }

@@ -180,6 +180,13 @@ typedef struct {
   double dscale[SYM_SPVI_HIST + 1];
   double *xp;          /* the trial's polynomial prediction of x
                           (predict.c), for dhist when it is accepted */
+  double *hw;          /* N: work of spvi_predict_history */
+  /* the basis values predict_poly evaluates at its points, for (z0, rho)
+     (pt_ok): the same at every continued step of a fixed h */
+  double pt_z0, pt_rho, pt_amp;
+  int pt_ok;
+  double *pt_q;        /* n x n: l_i(z_l) - l_i(-1) at the n points of q */
+  double *pt_p;        /* m x (m + 2): p's Lagrange basis at the nodes */
   int nhist;
   double hhist;
   /* the largest sizes of q and of p in the steps solved so far */

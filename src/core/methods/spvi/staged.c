@@ -68,6 +68,11 @@ struct spvi_stages {
   double *J;                    /* dense: (2d)^2 */
   sym_csc Js;                   /* sparse */
   double complex *z;            /* work: ns x 2d */
+  /* J = 0 (fp): M is its constant part, whose inverse maps the R2 rows
+     to the da by -D^-1 and the R1 rows to the dP by Wd^-1 (real m x m,
+     column-major), without the transforms */
+  double *dinv, *wdinv;
+  double *fw;                   /* work: N */
   /* the pairs n - 1 != m with a sparse J: no stages (ns = 0), the whole
      system M, assembled sparse as M - I (lu[0], factored as I + (M - I))
      from J's blocks as jacobians.c's matrix with every A_j = J */
@@ -229,6 +234,11 @@ transforms (spvi_core *c, spvi_stages *g)
         g->bq[j + i * m] = v;
         g->bp[j + i * m] = T[j + e * m];
       }
+  for (size_t e = 0; e < mm; e++)
+    {
+      g->dinv[e] = -creal (dli[e]);
+      g->wdinv[e] = creal (wdi[e]);
+    }
   st = 0;
 done:
   sym_free (wd);
@@ -259,6 +269,8 @@ spvi_stages_free (spvi_core *c)
   sym_free (g->wv);
   sym_free (g->rb);
   sym_free (g->dyb);
+  sym_free (g->dinv);
+  sym_free (g->fw);
   sym_free (g);
   c->sg = NULL;
 }
@@ -275,12 +287,15 @@ spvi_stages_init (spvi_core *c, int sparse)
   g->rq = sym_calloc (4 * mm, sizeof (double complex));
   g->wv = sym_calloc (nn, sizeof (double));
   g->J = sparse ? NULL : sym_calloc (nn * nn, sizeof (double));
-  if (! g->rq || ! g->wv || (! sparse && ! g->J)
+  g->dinv = sym_calloc (2 * mm, sizeof (double));
+  g->fw = sym_calloc (c->N, sizeof (double));
+  if (! g->rq || ! g->wv || (! sparse && ! g->J) || ! g->dinv || ! g->fw
       || (sparse && sym_csc_init (&g->Js, (int) nn, 0)))
     return SYM_ENOMEM;
   g->rp = g->rq + mm;
   g->bq = g->rq + 2 * mm;
   g->bp = g->rq + 3 * mm;
+  g->wdinv = g->dinv + mm;
   int st = transforms (c, g);
   if (st == -1 && sparse)
     {
@@ -668,6 +683,30 @@ schur_solve (spvi_stages *g, int i, int d, double hh, double *z, int k,
   return SYM_SUCCESS;
 }
 
+/* b <- M \ b for J = 0: da = -D^-1 b2, dP = Wd^-1 b1 */
+static void
+fp_apply (const spvi_core *c, double *b)
+{
+  const spvi_stages *g = c->sg;
+  const int d = c->d, m = c->m;
+  const size_t md = (size_t) m * d;
+  double *x = g->fw;
+  memcpy (x, b, 2 * md * sizeof (double));
+  const double *b1 = x, *b2 = x + md;
+  for (int j = 0; j < m; j++)
+    for (int k = 0; k < d; k++)
+      {
+        double sa = 0.0, sp = 0.0;
+        for (int r = 0; r < m; r++)
+          {
+            sa += g->dinv[j + r * m] * b2[(size_t) r * d + k];
+            sp += g->wdinv[j + r * m] * b1[(size_t) r * d + k];
+          }
+        b[(size_t) j * d + k] = sa;
+        b[md + (size_t) j * d + k] = sp;
+      }
+}
+
 /* b <- M \ b by the stage systems (see the top) */
 static int
 stages_apply (spvi_core *c, double *b, sym_counters *cnt)
@@ -677,6 +716,11 @@ stages_apply (spvi_core *c, double *b, sym_counters *cnt)
   const size_t nn = 2 * (size_t) d;
   if (g->whole)
     return sym_stage_lu_solve (&g->lu[0], b, cnt);
+  if (c->fp)
+    {
+      fp_apply (c, b);
+      return SYM_SUCCESS;
+    }
   double *b1 = b, *b2 = b + (size_t) m * d;    /* R1 rows, R2 rows */
   for (int i = 0; i < ns; i++)
     {
@@ -700,9 +744,8 @@ stages_apply (spvi_core *c, double *b, sym_counters *cnt)
             zr[k] = creal (zi[k]);
         }
       const int k = cimag (g->lam[i]) == 0.0 ? 1 : 2;
-      int st = c->fp ? SYM_SUCCESS
-               : g->schur ? schur_solve (g, i, d, 0.5 * c->h_mat, (double *) zi,
-                                       k, cnt)
+      int st = g->schur ? schur_solve (g, i, d, 0.5 * c->h_mat,
+                                       (double *) zi, k, cnt)
                         : sym_stage_lu_solve (&g->lu[i], (double *) zi, cnt);
       if (st)
         return st;

@@ -78,6 +78,9 @@ spvi_free (void *state)
   sym_free (s->pc);
   sym_free (s->dhist);
   sym_free (s->xp);
+  sym_free (s->hw);
+  sym_free (s->pt_q);
+  sym_free (s->pt_p);
   sym_free (s);
 }
 
@@ -185,10 +188,14 @@ spvi_alloc (int dim, const sym_method_opts *opts, int *status)
       s->gz = sym_calloc (s->ng, sizeof (double));
       s->gw = sym_calloc (s->ng, sizeof (double));
       s->xp = sym_calloc (s->lo.N, sizeof (double));
+      s->hw = sym_calloc (s->lo.N, sizeof (double));
+      s->pt_q = sym_calloc ((size_t) n * n, sizeof (double));
+      s->pt_p = sym_calloc ((size_t) m * (m + 2), sizeof (double));
       s->dhist = sym_calloc ((size_t) (SYM_SPVI_HIST + 1) * s->lo.N,
                              sizeof (float));
       if (! s->xi || ! s->vinv || ! s->f0 || ! s->lv || ! s->dlv || ! s->cb
-          || ! s->vq || ! s->dhist || ! s->xp || ! s->gz || ! s->gw || ! s->ach
+          || ! s->vq || ! s->dhist || ! s->xp || ! s->hw || ! s->pt_q || ! s->pt_p || ! s->gz
+          || ! s->gw || ! s->ach
           || ! s->pz || ! s->pw || ! s->pc)
         st = SYM_ENOMEM;
       if (! st)
@@ -402,8 +409,8 @@ spvi_accept (void *state)
          at any size of the data */
       double big = 0.0;
       for (int i = 0; i < N; i++)
-        big = fmax (big, fabs ((i < na ? tr->a[i] : tr->P[i - na])
-                               - s->xp[i]));
+        big = sym_fmax_acc (big, fabs ((i < na ? tr->a[i] : tr->P[i - na])
+                                       - s->xp[i]));
       s->dscale[0] = big > 0.0 && isfinite (big) ? big : 1.0;
       for (int i = 0; i < N; i++)
         s->dhist[i] = (float) (((i < na ? tr->a[i] : tr->P[i - na])
