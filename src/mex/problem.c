@@ -21,21 +21,31 @@ col (int n)
    parameters given after Y0 (or OPTS): one that declares fewer arguments
    (nargin, where Octave knows it) is told at once, naming the option,
    not by its own error at the first call */
+/* What f declares, by Octave's nargin or nargout (QUERY); -1 where it
+   declares nothing (varargin/varargout, anonymous outputs) or Octave
+   cannot tell (built-in functions) */
+static double
+declared (const mxArray *f, const char *query)
+{
+  mxArray *in[1] = { (mxArray *) f }, *out[1] = { NULL };
+  mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, query);
+  if (ex)
+    {
+      mxDestroyArray (ex);
+      return -1;
+    }
+  const double k = mxIsNumeric (out[0]) ? mxGetScalar (out[0]) : -1;
+  mxDestroyArray (out[0]);
+  return k;
+}
+
 static void
 check_nargin (const symmex_ctx *c, const mxArray *f, const char *what,
               const char *form)
 {
   if (! f)
     return;
-  mxArray *in[1] = { (mxArray *) f }, *out[1] = { NULL };
-  mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "nargin");
-  if (ex)
-    {
-      mxDestroyArray (ex);
-      return;
-    }
-  const double k = mxIsNumeric (out[0]) ? mxGetScalar (out[0]) : -1;
-  mxDestroyArray (out[0]);
+  const double k = declared (f, "nargin");
   int fixed = 1;
   for (const char *p = form; *p; p++)
     fixed += *p == ',';
@@ -69,15 +79,7 @@ check_nargout (const symmex_ctx *c, const mxArray *f, const char *what,
 {
   if (! f)
     return;
-  mxArray *in[1] = { (mxArray *) f }, *out[1] = { NULL };
-  mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, "nargout");
-  if (ex)
-    {
-      mxDestroyArray (ex);
-      return;
-    }
-  const double k = mxIsNumeric (out[0]) ? mxGetScalar (out[0]) : -1;
-  mxDestroyArray (out[0]);
+  const double k = declared (f, "nargout");
   if (k < 0 || k >= need)
     return;
   mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the %s function must return %s, "
