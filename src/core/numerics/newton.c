@@ -74,14 +74,16 @@ sym_newton_invalidate (sym_newton *nw)
 static double
 scaled_norm (int n, const double *v, const double *scale)
 {
+  /* the largest, or NaN if any is: without a branch on each */
   double m = 0.0;
+  int nan = 0;
   for (int i = 0; i < n; i++)
     {
-      double a = fabs (v[i]) / scale[i];
-      if (a > m || isnan (a))
-        m = a;
+      const double a = fabs (v[i]) / scale[i];
+      nan |= a != a;
+      m = a > m ? a : m;
     }
-  return m;
+  return nan ? NAN : m;
 }
 
 int

@@ -376,38 +376,74 @@ spvi_predict_history (spvi_state *s, double h)
   if (s->n - 1 != s->m || ! tr->cont || s->nhist < 2
       || ! sym_same_step (h, s->hhist))
     return;
-  int best_l = 0;
-  double best = INFINITY;
-  const double *w;
+  /* every order's error in one pass over the components: each v_L
+     summed in the order of l, as order L alone would */
+  const int nL = s->nhist < SYM_SPVI_HIST + 1 ? s->nhist : SYM_SPVI_HIST + 1;
   const float *const dh = s->dhist;
   const double d0 = s->dscale[0];
-  double *v = s->hw;
-  for (int L = 0; L < s->nhist && L <= SYM_SPVI_HIST; L++)
+  double c[SYM_SPVI_HIST + 1][SYM_SPVI_HIST], e[SYM_SPVI_HIST + 1];
+  for (int L = 0; L < nL; L++)
     {
-      /* by components innermost (long loops), each v_i summed in the
-         order of l */
-      w = sym_extrap_weights (L);
-      for (int i = 0; i < N; i++)
-        v[i] = d0 * dh[i];
+      const double *wL = sym_extrap_weights (L);
       for (int l = 0; l < L; l++)
-        {
-          const double c = w[l] * s->dscale[l + 1];
-          const float *dl = dh + (size_t) (l + 1) * N;
-          for (int i = 0; i < N; i++)
-            v[i] -= c * dl[i];
-        }
-      double e = 0.0;
+        c[L][l] = wL[l] * s->dscale[l + 1];
+      e[L] = 0.0;
+    }
+#if SYM_SPVI_HIST == 4
+  /* the usual full history, by registers */
+  if (nL == 5)
+    {
+      const float *h1 = dh + N, *h2 = h1 + N, *h3 = h2 + N, *h4 = h3 + N;
+      double e0 = 0.0, e1 = 0.0, e2 = 0.0, e3 = 0.0, e4 = 0.0;
       for (int i = 0; i < N; i++)
-        /* fmax (e, |v|), inline: a NaN v leaves e */
-        if (fabs (v[i]) > e)
-          e = fabs (v[i]);
-      if (e < best)
         {
-          best = e;
-          best_l = L;
+          const double v0 = d0 * dh[i], g1 = h1[i], g2 = h2[i], g3 = h3[i],
+                       g4 = h4[i];
+          const double v1 = v0 - c[1][0] * g1;
+          const double v2 = v0 - c[2][0] * g1 - c[2][1] * g2;
+          const double v3 = v0 - c[3][0] * g1 - c[3][1] * g2 - c[3][2] * g3;
+          const double v4 = v0 - c[4][0] * g1 - c[4][1] * g2 - c[4][2] * g3
+                            - c[4][3] * g4;
+          /* fmax (e, |v|), inline: a NaN v leaves e */
+          e0 = fabs (v0) > e0 ? fabs (v0) : e0;
+          e1 = fabs (v1) > e1 ? fabs (v1) : e1;
+          e2 = fabs (v2) > e2 ? fabs (v2) : e2;
+          e3 = fabs (v3) > e3 ? fabs (v3) : e3;
+          e4 = fabs (v4) > e4 ? fabs (v4) : e4;
+        }
+      e[0] = e0;
+      e[1] = e1;
+      e[2] = e2;
+      e[3] = e3;
+      e[4] = e4;
+    }
+  else
+#endif
+  for (int i = 0; i < N; i++)
+    {
+      double dl[SYM_SPVI_HIST + 1];
+      for (int l = 0; l < nL; l++)
+        dl[l] = dh[(size_t) l * N + i];
+      const double v0 = d0 * dl[0];
+      for (int L = 0; L < nL; L++)
+        {
+          double v = v0;
+          for (int l = 0; l < L; l++)
+            v -= c[L][l] * dl[l + 1];
+          /* fmax (e, |v|), inline: a NaN v leaves e */
+          if (fabs (v) > e[L])
+            e[L] = fabs (v);
         }
     }
-  w = sym_extrap_weights (best_l);
+  int best_l = 0;
+  double best = INFINITY;
+  for (int L = 0; L < nL; L++)
+    if (e[L] < best)
+      {
+        best = e[L];
+        best_l = L;
+      }
+  const double *w = sym_extrap_weights (best_l);
   for (int l = 0; l < best_l; l++)
     for (int i = 0; i < N; i++)
       s->lo.x[i] += w[l] * s->dscale[l] * s->dhist[(size_t) l * N + i];

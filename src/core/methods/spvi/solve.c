@@ -63,12 +63,16 @@ move_error (spvi_core *c, double S)
         continue;
       if (! c->fovalid || n1 == 0.0)
         return INFINITY;
+      /* the fixed point's J is 0: nothing moved */
       double *jdy = dy + nn;
-      spvi_jac_p (c, j, dy, jdy);
+      if (! c->fp)
+        spvi_jac_p (c, j, dy, jdy);
       for (int k = 0; k < d; k++)
         {
           double v = c->F[(size_t) j * nn + d + k]
-                     - c->Fo[(size_t) j * nn + d + k] - jdy[k];
+                     - c->Fo[(size_t) j * nn + d + k];
+          if (! c->fp)
+            v -= jdy[k];
           mis = sym_fmax_acc (mis, fabs (v));
         }
       e += c->w[j] * mis * (n2 / n1);
