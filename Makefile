@@ -157,11 +157,11 @@ CORE_SRC  := $(shell find src/core -name '*.c' | sort)
 CORE_LIBS  = -lklu -lsuitesparseconfig \
              $(or $(shell $(MKOCTFILE) -p LAPACK_LIBS 2>/dev/null),-llapack) \
              $(or $(shell $(MKOCTFILE) -p BLAS_LIBS 2>/dev/null),-lblas) -lm
-build/bench/core_cost: bench/core_cost.c $(CORE_SRC) $(shell find src/core -name '*.h')
+build/bench/core_cost: bench/core_cost.c bench/timing.h $(CORE_SRC) $(shell find src/core -name '*.h')
 	@mkdir -p build/bench
 	$(CC) -std=c99 -Wall -O2 -Isrc/core -o $@ bench/core_cost.c $(CORE_SRC) $(CORE_LIBS)
 
-build/bench/gauss_loop: bench/gauss_loop.c
+build/bench/gauss_loop: bench/gauss_loop.c bench/timing.h
 	@mkdir -p build/bench
 	$(CC) -std=c99 -Wall -O2 -o $@ bench/gauss_loop.c -lm
 

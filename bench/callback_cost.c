@@ -13,17 +13,9 @@
    or f and the Hessian) in seconds.  Built by
    bench/run_benchmarks.m with mkoctfile --mex. */
 #include "mex.h"
+#include "timing.h"
 
 #include <string.h>
-#include <time.h>
-
-static double
-now (void)
-{
-  struct timespec ts;
-  clock_gettime (CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 void
 mexFunction (int nlhs, mxArray *plhs[], int nrhs, const mxArray *prhs[])

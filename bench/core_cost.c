@@ -10,23 +10,15 @@
 #include "sym.h"
 #include "numerics/numerics.h"
 #include "tuning.h"
+#include "timing.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #define ROUNDS 5
 #define PI 3.14159265358979323846
-
-static double
-now (void)
-{
-  struct timespec ts;
-  clock_gettime (CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 /* ------------------------------------------------------------ LU */
 

@@ -15,7 +15,8 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
+
+#include "timing.h"
 
 #define S 4                 /* stages */
 #define N 4                 /* 2 dof: q1 q2 p1 p2 */
@@ -30,14 +31,6 @@ static double A[S][S], B[S], C[S];
 /* E[i][j]: the previous step's Lagrange basis (nodes 0, c_1..c_s) at
    1 + c_i, so that the old collocation polynomial gives the new guess */
 static double E[S][S];
-
-static double
-now (void)
-{
-  struct timespec ts;
-  clock_gettime (CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 /* Legendre P_s and its derivative at x, by the three-term recurrence */
 static void
@@ -260,13 +253,6 @@ integrate (const double *y0, int monitor, run_result *res)
   res->fevals = S * iters;
 }
 
-static int
-cmp (const void *a, const void *b)
-{
-  const double x = *(const double *) a, y = *(const double *) b;
-  return (x > y) - (x < y);
-}
-
 int
 main (int argc, char **argv)
 {
@@ -281,7 +267,7 @@ main (int argc, char **argv)
       integrate (y0, 0, &res);
       t[r] = (now () - t0) / STEPS;
     }
-  qsort (t, ROUNDS, sizeof t[0], cmp);
+  qsort (t, ROUNDS, sizeof t[0], cmp_double);
   integrate (y0, 1, &res);        /* the same steps, with the energy */
   double dist = 0.0;
   for (int k = 0; k < N; k++)

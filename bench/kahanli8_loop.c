@@ -22,7 +22,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+
+#include "timing.h"
 
 #define NB 6
 #define D (3 * NB)
@@ -58,14 +59,6 @@ static const double v0[D] = {
   0.00288930, 0.00114527, 0.00039677,
   0.00276725, -0.00170702, -0.00136504
 };
-
-static double
-now (void)
-{
-  struct timespec ts;
-  clock_gettime (CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 /* a = -M^-1 grad V, pair by pair */
 static void
@@ -138,14 +131,7 @@ main (int argc, char **argv)
       t[r] = (now () - t0) / nsteps;
     }
   /* the median: others share the machine */
-  for (int i = 1; i < nr; i++)
-    for (int j = i; j > 0 && t[j] < t[j - 1]; j--)
-      {
-        const double x = t[j];
-        t[j] = t[j - 1];
-        t[j - 1] = x;
-      }
-  printf ("%.6f\n", 1e6 * (nr % 2 ? t[nr / 2] : 0.5 * (t[nr / 2 - 1] + t[nr / 2])));
+  printf ("%.6f\n", 1e6 * median (t, nr));
   for (int i = 0; i < D; i++)
     printf ("%.17g\n", q[i]);
   for (int i = 0; i < D; i++)

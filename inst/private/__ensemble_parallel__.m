@@ -324,7 +324,7 @@ function seen = replay (name, r, first, last, K, seen)
 endfunction
 
 ## The identifier of one of the gateway's warnings (src/mex/messages.c,
-## options.c, entry.c, ensemble.c) from its text: only the last warning
+## options.c, entry.c, ensemble_outputs.c) from its text: only the last warning
 ## of a chunk comes back with its identifier (lastwarn).
 function id = warning_id (msg)
   persistent table = {

@@ -216,9 +216,9 @@
    tolerance */
 #define SYM_SPVI_FP_TOL 1e-2
 #define SYM_SPVI_FP_SLOW 12
-/* exact stages (staged.c): the iteration on Newton's matrix stops when
-   its change is below EPS ulps of the correction, or after ITERS (its
-   contraction is O(h^2): two or three suffice) */
+/* exact stages (staged_solve.c): the iteration on Newton's matrix stops
+   when its change is below EPS ulps of the correction, or after ITERS
+   (its contraction is O(h^2): two or three suffice) */
 #define SYM_SPVI_EXACT_EPS 4.0
 #define SYM_SPVI_EXACT_ITERS 8
 /* by default Newton's systems go by stages (staged.c) above STAGES_N

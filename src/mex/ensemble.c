@@ -14,52 +14,18 @@
    - OutputFcn: at each row of the grid once every member still running
      has reached it, with the column of all members' states (OutputSel's
      components of member 1, then of member 2, ...);
-   - Stats: the members' counters summed; warnings name the member. */
-#include "symmex.h"
+   - Stats: the members' counters summed; warnings name the member.
+   This file: the members set up and run, their rows and events taken as
+   they come, OutputFcn after each round; what the run returns and says
+   at its end is ensemble_outputs.c's. */
+#include "ensemble.h"
 
 #include <limits.h>
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 /* a member's status while it runs */
 #define RUNNING INT_MIN
-/* the members whose own warnings are given; the rest are counted */
-#define WARN_MEMBERS 5
-
-typedef struct ens_out ens_out;
-typedef struct {
-  ens_out *E;
-  int k;
-} member_ref;
-
-struct ens_out {
-  symmex_ctx *c;
-  const symmex_opts *o;
-  int K, n;
-  int first;               /* members are named first + 1, ..., first + K */
-  int rows_form;           /* [t, Y] (else sol, or nothing) */
-  size_t R;                /* rows allotted in Y */
-  mxArray *Ya;
-  double *Y;
-  double *tg;              /* the grid's times (NaN: not yet) */
-  unsigned char *weak;     /* tg[r] came from a row at an event's time */
-  size_t *nrows;           /* each member's rows so far */
-  /* the last rows of each member, B of them, component by component,
-     until they go into Y together: Y's rows of a member lie R apart,
-     and one row at a time would touch a page for each value */
-  double *stage;
-  size_t B, *flushed;
-  double *tlast, *tev;     /* its last row's time, its last event's */
-  symmex_ctx **mc;         /* its context: events, sol's rows (made
-                              when first needed, member_ctx) */
-  const symmex_opts *om;   /* the options of the members' contexts */
-  member_ref *ref;
-  int *status;
-  size_t emitted;          /* rows handed to OutputFcn */
-  long stop_row;           /* the row OutputFcn stopped at, or -1 */
-  double *orow;            /* n x K: a row of every member */
-};
 
 /* ------------------------------------------------------------ sinks */
 /* No rows yet: at the start, and again when the stacked run failed and
@@ -85,8 +51,8 @@ rows_clear (ens_out *E)
    its own, no OutputFcn (the ensemble's is called here).  Made on first
    use, possibly on the member's stack (an allocation there must not
    raise an error): NULL when there is no memory. */
-static symmex_ctx *
-member_ctx (ens_out *E, int k)
+symmex_ctx *
+symmex_ens_member (ens_out *E, int k)
 {
   if (E->mc[k])
     return E->mc[k];
@@ -111,8 +77,8 @@ member_ctx (ens_out *E, int k)
 }
 
 /* member k's staged rows into Y */
-static void
-flush (ens_out *E, int k)
+void
+symmex_ens_flush (ens_out *E, int k)
 {
   const int n = E->n;
   const size_t f = E->flushed[k], cnt = E->nrows[k] - f;
@@ -158,7 +124,7 @@ ens_row (double t, const double *y, void *user)
   E->tlast[k] = t;
   E->nrows[k] = r + 1;
   if (j + 1 == E->B)
-    flush (E, k);
+    symmex_ens_flush (E, k);
   return 0;
 }
 
@@ -176,15 +142,15 @@ static int
 ens_event (double te, const double *ye, int ie, void *user)
 {
   member_ref *mr = user;
-  symmex_ctx *mc = member_ctx (mr->E, mr->k);
+  symmex_ctx *mc = symmex_ens_member (mr->E, mr->k);
   mr->E->tev[mr->k] = te;
   return mc ? symmex_sink_event (te, ye, ie, mc) : -1;
 }
 
 /* ------------------------------------------------------------ OutputFcn */
 /* The time of row r of the grid, or NaN */
-static double
-grid_t (const ens_out *E, size_t r)
+double
+symmex_ens_grid_t (const ens_out *E, size_t r)
 {
   if (E->rows_form)
     return E->tg[r];
@@ -246,7 +212,7 @@ ens_round (void *user)
     E->emitted = 1;
   for (size_t r = E->emitted; r < done_rows; r++)
     {
-      double t = grid_t (E, r);
+      double t = symmex_ens_grid_t (E, r);
       int any = 0;
       for (int k = 0; k < E->K; k++)
         any |= member_row (E, k, r, t, E->orow + (size_t) k * E->n);
@@ -259,190 +225,6 @@ ens_round (void *user)
         }
     }
   return 0;
-}
-
-/* ------------------------------------------------------------ outputs */
-/* Octave's fn (Y, R, n, K), or fn (R, n, K) without Y: a Y of R x n x K
-   made or cut by Octave (Y and the sizes are destroyed) */
-static mxArray *
-y_call (const char *fn, mxArray *Y, size_t R, int n, int K)
-{
-  mxArray *in[4];
-  int nin = 0;
-  if (Y)
-    in[nin++] = Y;
-  in[nin++] = mxCreateDoubleScalar ((double) R);
-  in[nin++] = mxCreateDoubleScalar (n);
-  in[nin++] = mxCreateDoubleScalar (K);
-  mxArray *out[1] = { NULL };
-  mexCallMATLAB (1, out, nin, in, fn);
-  for (int i = 0; i < nin; i++)
-    mxDestroyArray (in[i]);
-  return out[0];
-}
-
-/* [t, Y]: the terminal events' rows dropped, the rows after a member's
-   end NaN, Y cut to the rows of t; events by member, then time */
-static void
-rows_outputs (ens_out *E, int nlhs, mxArray *plhs[])
-{
-  const int K = E->K, n = E->n;
-  const size_t R = E->R;
-  size_t Rt = 0;
-  for (int k = 0; k < K; k++)
-    {
-      flush (E, k);
-      if (E->status[k] == SYM_STOP_EVENT && E->nrows[k] > 0
-          && E->tlast[k] == E->tev[k])
-        E->nrows[k]--;
-      Rt = E->nrows[k] > Rt ? E->nrows[k] : Rt;
-    }
-  if (E->stop_row >= 0 && (size_t) E->stop_row + 1 < Rt)
-    Rt = (size_t) E->stop_row + 1;
-  double *Y = E->Y;
-  for (int k = 0; k < K; k++)
-    for (int i = 0; i < n; i++)
-      {
-        double *col = Y + R * ((size_t) i + (size_t) n * k);
-        for (size_t r = E->nrows[k]; r < Rt; r++)
-          col[r] = NAN;
-      }
-  if (Rt < R)
-    {
-      /* Y (1:Rt, :, :), by Octave (the one copy of Y, when members
-         ended early) */
-      E->Ya = y_call ("resize", E->Ya, Rt, n, K);
-    }
-  plhs[0] = mxCreateDoubleMatrix (Rt, 1, mxREAL);
-  if (Rt)
-    memcpy (mxGetPr (plhs[0]), E->tg, Rt * sizeof (double));
-  plhs[1] = E->Ya;
-  if (nlhs <= 2)
-    return;
-  const double tend = Rt ? E->tg[Rt - 1] : NAN;
-  size_t nev = 0;
-  for (int k = 0; k < K; k++)
-    nev += E->mc[k] ? E->mc[k]->nev : 0;
-  mxArray *te = mxCreateDoubleMatrix (nev ? nev : 0, nev ? 1 : 0, mxREAL);
-  mxArray *ye = mxCreateDoubleMatrix (nev, nev ? n : 0, mxREAL);
-  mxArray *ie = mxCreateDoubleMatrix (nev, nev ? 2 : 0, mxREAL);
-  size_t e = 0;
-  for (int k = 0; k < K; k++)
-    {
-      const symmex_ctx *m = E->mc[k];
-      for (size_t j = 0; m && j < m->nev; j++)
-        {
-          /* none beyond t(end) when OutputFcn stopped the run */
-          if (E->stop_row >= 0 && Rt
-              && (E->tg[Rt - 1] - E->tg[0]) * (m->te[j] - tend) > 0)
-            continue;
-          mxGetPr (te)[e] = m->te[j];
-          for (int i = 0; i < n; i++)
-            mxGetPr (ye)[e + nev * i] = m->ye[j * n + i];
-          mxGetPr (ie)[e] = m->ie[j] + 1;
-          mxGetPr (ie)[e + nev] = E->first + k + 1;
-          e++;
-        }
-    }
-  if (e < nev)
-    {
-      /* the dropped ones: the kept rows moved up */
-      for (int i = 0; i < n; i++)
-        memmove (mxGetPr (ye) + e * i, mxGetPr (ye) + nev * i,
-                 e * sizeof (double));
-      memmove (mxGetPr (ie) + e, mxGetPr (ie) + nev, e * sizeof (double));
-      mxSetM (te, e);
-      mxSetM (ye, e);
-      mxSetM (ie, e);
-      if (e == 0)
-        {
-          mxSetN (te, 0);
-          mxSetN (ye, 0);
-          mxSetN (ie, 0);
-        }
-    }
-  symmex_event_plhs (nlhs, plhs, te, ye, ie);
-}
-
-/* sol: 1 x K, sol(k) as member k's own run returns it */
-static mxArray *
-sol_outputs (ens_out *E, const symmex_method *m, const void *own,
-             const sym_stats *st)
-{
-  mxArray *all = NULL;
-  for (int k = 0; k < E->K; k++)
-    {
-      char jac_used[160];
-      symmex_jac_used (E->mc[k], &st[k], jac_used, sizeof jac_used);
-      mxArray *s = NULL;
-      symmex_outputs (m, own, E->mc[k], &st[k], jac_used, 1, &s);
-      if (! all)
-        all = mxCreateStructMatrix (1, E->K, 0, NULL);
-      for (int f = 0; f < mxGetNumberOfFields (s); f++)
-        {
-          const char *name = mxGetFieldNameByNumber (s, f);
-          if (mxGetFieldNumber (all, name) < 0)
-            mxAddField (all, name);
-          mxSetField (all, k, name, mxGetFieldByNumber (s, 0, f));
-          mxSetFieldByNumber (s, 0, f, NULL);
-        }
-      mxDestroyArray (s);
-    }
-  return all;
-}
-
-/* ------------------------------------------------------------ messages */
-static void
-report (const symmex_method *m, const void *own, const symmex_opts *o,
-        const symmex_args *a, ens_out *E, const sym_stats *st)
-{
-  int warned = 0, more = 0, first_more = 0;
-  for (int k = 0; k < E->K; k++)
-    {
-      const int s = E->status[k];
-      /* an OutputFcn stop is the ensemble's, said once below */
-      if (s == SYM_STOP_OUTPUT && E->stop_row >= 0 && ! st[k].sep_broken)
-        continue;
-      if ((s == SYM_DONE || s == SYM_STOP_EVENT) && ! st[k].sep_broken)
-        continue;
-      if (warned == WARN_MEMBERS && s != SYM_ENOMEM && s != SYM_EOUTPUT)
-        {
-          if (! more++)
-            first_more = E->first + k + 1;
-          continue;
-        }
-      char name[96];
-      snprintf (name, sizeof name, "%s: member %d", m->name,
-                E->first + k + 1);
-      symmex_method mk = *m;
-      mk.name = name;
-      symmex_ctx *mc = member_ctx (E, k);
-      if (! mc)
-        mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory",
-                           m->name);
-      if (E->rows_form)
-        {
-          /* its last row, for the message */
-          mc->tbuf = &E->tlast[k];
-          mc->nrows = E->nrows[k] > 0;
-        }
-      symmex_report (&mk, own, o, a, mc, &st[k], s == SYM_STOP_OUTPUT
-                                                   ? SYM_DONE : s);
-      warned++;
-    }
-  if (more)
-    mexWarnMsgIdAndTxt ("symplectic:members", "%s: %d more members stopped "
-                        "early or drew a warning (the first of them is "
-                        "member %d); sol(k).stats and the NaN rows of Y "
-                        "tell which", m->name, more, first_more);
-  if (E->stop_row >= 0)
-    {
-      const double t = grid_t (E, (size_t) E->stop_row);
-      if (t != a->tspan[a->ntspan - 1])
-        mexWarnMsgIdAndTxt ("symplectic:output-stop", "%s: OutputFcn asked "
-                            "to stop at t = %.15g; returning the solution up "
-                            "to there", m->name, t);
-    }
 }
 
 /* ------------------------------------------------------------ explicit steps */
@@ -601,6 +383,25 @@ members_share (const char *name, const symmex_args *a, symmex_args *ar)
   return first;
 }
 
+/* Octave's fn (Y, R, n, K), or fn (R, n, K) without Y: a Y of R x n x K
+   made or cut by Octave (Y and the sizes are destroyed) */
+mxArray *
+symmex_ens_y_call (const char *fn, mxArray *Y, size_t R, int n, int K)
+{
+  mxArray *in[4];
+  int nin = 0;
+  if (Y)
+    in[nin++] = Y;
+  in[nin++] = mxCreateDoubleScalar ((double) R);
+  in[nin++] = mxCreateDoubleScalar (n);
+  in[nin++] = mxCreateDoubleScalar (K);
+  mxArray *out[1] = { NULL };
+  mexCallMATLAB (1, out, nin, in, fn);
+  for (int i = 0; i < nin; i++)
+    mxDestroyArray (in[i]);
+  return out[0];
+}
+
 /* [t, Y]'s arrays: Y of R rows, the grid, the staged rows */
 static void
 rows_init (ens_out *E, const char *name, long R)
@@ -618,7 +419,7 @@ rows_init (ens_out *E, const char *name, long R)
                        "ask for fewer rows (output times in TSPAN, "
                        "Refine) or fewer members in a call", name, R,
                        n, K, ybytes / 1e9);
-  E->Ya = y_call ("zeros", NULL, E->R, n, K);
+  E->Ya = symmex_ens_y_call ("zeros", NULL, E->R, n, K);
   E->Y = mxGetPr (E->Ya);
   E->tg = mxMalloc ((E->R ? E->R : 1) * sizeof (double));
   E->weak = mxMalloc (E->R ? E->R : 1);
@@ -669,7 +470,7 @@ members_dopts (ens_out *E, const char *name, const sym_driver_opts *dopt,
   for (int k = 0; k < E->K; k++)
     {
       /* sol's rows are each member's context's */
-      symmex_ctx *mc = E->rows_form ? NULL : member_ctx (E, k);
+      symmex_ctx *mc = E->rows_form ? NULL : symmex_ens_member (E, k);
       if (! E->rows_form && ! mc)
         mexErrMsgIdAndTxt ("Octave:out-of-memory", "%s: out of memory",
                            name);
@@ -747,75 +548,6 @@ run_rounds (ens_out *E, const char *name, const sym_stepper_type *type,
   return eo.nbatch;
 }
 
-/* The counters Stats prints, into *sum: the members' summed, or the
-   stacked run's (sstatus SYM_DONE), with the probe calls of FCN */
-static void
-stats_sum (const ens_out *E, const sym_stats *st, const sym_stats *sst,
-           int sstatus, sym_stats *sum)
-{
-  const symmex_ctx *c = E->c;
-  memset (sum, 0, sizeof *sum);
-  sum->cnt.nrhs = c->probe_calls;
-  sum->cnt.nrhs_states = c->probe_states;
-  sum->cnt.njac = c->probe_jac;
-  for (int k = 0; k < E->K; k++)
-    {
-      long *to = (long *) &sum->cnt;
-      const long *from = (const long *) &st[k].cnt;
-      for (size_t i = 0; i < sizeof sum->cnt / sizeof (long); i++)
-        to[i] += from[i];
-      if (st[k].jac_dropped && ! sum->jac_dropped)
-        {
-          sum->jac_dropped = 1;
-          sum->jac_dropped_t = st[k].jac_dropped_t;
-        }
-      sum->rhs_jac_used |= st[k].rhs_jac_used;
-    }
-  if (sstatus == SYM_DONE)
-    {
-      /* one run did it all: its counts */
-      sum->cnt = sst->cnt;
-      sum->cnt.nrhs += c->probe_calls;
-      sum->cnt.nrhs_states += c->probe_states;
-    }
-}
-
-/* Stats: how the members ran, then the counters of sum */
-static void
-print_stats (const ens_out *E, const sym_stats *sum, int sstatus,
-             long nbatch)
-{
-  const int K = E->K;
-  char jac_used[160];
-  symmex_jac_used (E->c, sum, jac_used, sizeof jac_used);
-  if (sstatus == SYM_DONE)
-    mexPrintf ("Members: %d, integrated as one system of %d "
-               "components (explicit fixed steps, Vectorized); its "
-               "counts:\n", K, E->n * K);
-  else if (E->o->vectorized)
-    mexPrintf ("Members: %d, summed below (%ld Vectorized calls of FCN "
-               "for all of them at once)\n", K, nbatch);
-  else
-    mexPrintf ("Members: %d, summed below\n", K);
-  symmex_print_stats (sum, jac_used, E->c);
-}
-
-/* The outputs asked for: [t, Y, ...], or sol (nothing for nlhs 0) */
-static void
-ens_outputs (ens_out *E, const symmex_method *m, const void *own,
-             const sym_stats *st, int nlhs, mxArray *plhs[])
-{
-  if (E->rows_form)
-    rows_outputs (E, nlhs, plhs);
-  else if (nlhs == 1)
-    {
-      if (E->o->hamiltonian)
-        for (int k = 0; k < E->K; k++)
-          symmex_energy (E->mc[k]);
-      plhs[0] = sol_outputs (E, m, own, st);
-    }
-}
-
 /* ------------------------------------------------------------ the run */
 void
 symmex_ensemble_check (const char *name, const symmex_args *a,
@@ -856,13 +588,13 @@ symmex_ensemble (const symmex_method *m, const void *own,
   if (o->outputfcn)
     symmex_outputfcn (c, NULL, 0, NULL, "done");
   sym_stats sum;
-  stats_sum (&E, st, &sst, sstatus, &sum);
+  symmex_ens_stats_sum (&E, st, &sst, sstatus, &sum);
   /* the stacked run's warnings as one run's (Separable), else by member */
   if (sstatus == SYM_DONE)
     symmex_report (m, own, o, a, c, &sst, SYM_DONE);
   else
-    report (m, own, o, a, &E, st);
+    symmex_ens_report (m, own, o, a, &E, st);
   if (o->stats)
-    print_stats (&E, &sum, sstatus, nbatch);
-  ens_outputs (&E, m, own, st, nlhs, plhs);
+    symmex_ens_print_stats (&E, &sum, sstatus, nbatch);
+  symmex_ens_outputs (&E, m, own, st, nlhs, plhs);
 }

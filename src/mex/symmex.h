@@ -346,7 +346,8 @@ void symmex_outputs (const symmex_method *m, const void *own,
                      const char *jac_used, int nlhs, mxArray *plhs[]);
 
 /* ensemble.c: the run of an ensemble (Ensemble on): its members by
-   sym_ensemble, its outputs and messages, in place of a single run's */
+   sym_ensemble, its outputs and messages (ensemble_outputs.c), in place
+   of a single run's */
 void symmex_ensemble (const symmex_method *m, const void *own,
                       const sym_stepper_type *type, const symmex_args *a,
                       const symmex_opts *o, symmex_ctx *c,

@@ -2,7 +2,8 @@
    SPDX-License-Identifier: GPL-3.0-or-later; see the file COPYING.  */
 
 /* spvi.h -- internal to the spectral variational integrator (odeSPVI):
-   its equations (equations.c), Newton matrices (jacobians.c), solve
+   its equations (equations.c), Newton matrices (jacobians.c), their
+   stage systems (staged.c, staged_factor.c, staged_solve.c), solve
    (solve.c), predictor (predict.c), dense output (dense.c) and stepper
    (step.c).
 
@@ -76,7 +77,7 @@ typedef struct {
   int fp_off;          /* NonlinearSolver auto: Newton from now on */
   int exact;           /* stages with a new matrix every solve: node
                           Jacobians evaluated, the stages' solve iterated
-                          to Newton's own correction (staged.c) */
+                          to Newton's own correction (staged_solve.c) */
   double *Y, *F, *tj;  /* node states and f values (2d x m), node times */
   double *xf;          /* the x at which F was evaluated */
   int fvalid;
@@ -248,14 +249,19 @@ int spvi_stages_init (spvi_core *c, int sparse);
 /* whether the stages can be exact (dense J) */
 int spvi_stages_dense (const spvi_core *c);
 void spvi_stages_free (spvi_core *c);
-/* sym_newton_problem's factor and solve */
+
+/* ---------------------------------------------------------- staged_factor.c */
+/* sym_newton_problem's factor */
 int spvi_stages_factor (void *ctx, const double *x, sym_counters *cnt);
-int spvi_stages_solve (void *ctx, double *b, sym_counters *cnt);
 /* out (d) = the p rows of node j's Jacobian (c->A, or the stages' J
    unless exact) times dy (2d) */
 void spvi_jac_p (spvi_core *c, int j, const double *dy, double *out);
 /* c->noise_q, noise_p from the stages' J (see predict.c) */
 void spvi_stages_noise (spvi_core *c, const double *qa, const double *pa);
+
+/* ----------------------------------------------------------- staged_solve.c */
+/* sym_newton_problem's solve */
+int spvi_stages_solve (void *ctx, double *b, sym_counters *cnt);
 
 /* ---------------------------------------------------------------- solve.c */
 /* Solve the step (t, h, yk) from the start c->x to tol (relative to the
