@@ -91,18 +91,52 @@ kepler_batch (int k, const double *t, const double *y, double *dy,
   return 0;
 }
 
+/* Df of Kepler (4-by-4, column-major), as a compiled FCN's Hessian
+   gives it */
+static int
+kepler_jac (double t, const double *y, double *df, void *user)
+{
+  (void) t;
+  (void) user;
+  const double r2 = y[0] * y[0] + y[1] * y[1], r = sqrt (r2);
+  const double r3 = r2 * r, r5 = r3 * r2;
+  memset (df, 0, 16 * sizeof (double));
+  df[0 + 4 * 2] = 1.0;
+  df[1 + 4 * 3] = 1.0;
+  df[2 + 4 * 0] = -1.0 / r3 + 3.0 * y[0] * y[0] / r5;
+  df[2 + 4 * 1] = 3.0 * y[0] * y[1] / r5;
+  df[3 + 4 * 0] = df[2 + 4 * 1];
+  df[3 + 4 * 1] = -1.0 / r3 + 3.0 * y[1] * y[1] / r5;
+  return 0;
+}
+
+static int
+kepler_rhs_jac (double t, const double *y, double *dy, double *df,
+                void *user)
+{
+  kepler (t, y, dy, user);
+  return kepler_jac (t, y, df, user);
+}
+
 /* K members (K = 1: one sym_integrate), eccentricities 0.05 to 0.6,
-   nsteps fixed steps of 2 pi / 100, NewtonMatrix newmat: the least time
-   per member-step of ROUNDS runs, and the states evaluated per
-   member-step */
+   nsteps fixed steps of 2 pi / 100, NewtonMatrix newmat; with_df: f and
+   Df by separate callbacks and no batch one (what a compiled FCN gives
+   the core), else f alone with its batch form: the least time per
+   member-step of ROUNDS runs, and the states evaluated per member-step */
 static double
-spvi_time (int K, long nsteps, int newmat, double *states)
+spvi_time (int K, long nsteps, int newmat, int with_df, double *states)
 {
   sym_system sys;
   memset (&sys, 0, sizeof sys);
   sys.dim = 2;
   sys.rhs = kepler;
-  sys.rhs_batch = kepler_batch;
+  if (with_df)
+    {
+      sys.jac = kepler_jac;
+      sys.rhs_jac = kepler_rhs_jac;
+    }
+  else
+    sys.rhs_batch = kepler_batch;
   sym_spvi_opts so;
   memset (&so, 0, sizeof so);
   so.q_dofs = 4;
@@ -268,7 +302,10 @@ main (int argc, char **argv)
            "One run of 20000 steps (e = 0.05), or an ensemble of 1000 "
            "members (e from 0.05 to 0.6) of 100 steps each, %d at once; "
            "NewtonMatrix as the gateways pass it (\"auto\" takes \"new\" "
-           "with a batch callback).\n\n"
+           "with a batch callback); f with its batch form and finite-"
+           "difference Df, or (\"f and Df\") f and the exact Df by separate "
+           "callbacks and no batch form, what a compiled FCN gives the "
+           "core.\n\n"
            "| run | NewtonMatrix | us per member-step | states of f per "
            "member-step |\n|---|---|---|---|\n", SYM_ENS_LIVE);
   const struct { const char *name; int K; long steps; } runs[] = {
@@ -280,11 +317,18 @@ main (int argc, char **argv)
       {
         double states = 0.0;
         const double t = spvi_time (runs[r].K, runs[r].steps, modes[m].mode,
-                                    &states);
+                                    0, &states);
         fprintf (f, "| %s | %s | %.3f | %.1f |\n", runs[r].name,
                  modes[m].name, 1e6 * t, states);
         fflush (f);
       }
+  {
+    double states = 0.0;
+    const double t = spvi_time (1, 20000, SYM_MATRIX_AUTO, 1, &states);
+    fprintf (f, "| one run, f and Df | auto | %.3f | %.1f |\n", 1e6 * t,
+             states);
+    fflush (f);
+  }
 
   fprintf (f, "\n## odeSPVI (5, 4), Kepler e = 0.6, 200 periods, 113137 "
            "fixed steps, C callback\n\n"

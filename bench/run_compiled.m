@@ -131,15 +131,27 @@ to = t(1) / no;  tc = t(2) / nc;
 rows_(end+1, :) = {"K2 odeSPVI (4,3), Kepler, fixed step, the Hessian", us(to), us(tc), ...
                    sprintf("%.0f", to / tc), ">= 30", met_text(to / tc >= 30)};
 printf ("K2: Octave %s, compiled %s per step (runs agree to %.1e)\n", us (to), us (tc), agree);
-core = NaN;
+## against the core alone: CORE.md's times are the least of 5 runs, so
+## the compiled run's is here too; its row "f and Df" is the same
+## configuration (f and the exact Df by callbacks, no batch form)
+tl = Inf;
+for i = 1:5
+  tic;
+  r = solve (@odeSPVI, kep, [0 nc*h], y0, o2, 1);
+  tl = min (tl, toc);
+endfor
+tl /= nc;
 txt = fileread (fullfile (here, "CORE.md"));
-tok = regexp (txt, '\| one run \| auto \| ([0-9.]+) \|', "tokens", "once");
-if (! isempty (tok))
-  core = 1e-6 * str2double (tok{1});
-endif
-rows_(end+1, :) = {"K2' the same, compiled against CORE.md's C-callback step", ...
-                   "-", sprintf("%s (C: %s)", us(tc), us(core)), sprintf("%.2f", tc / core), ...
-                   "<= 1.5", met_text(tc / core <= 1.5)};
+for row = {{"one run, f and Df", "C, f and Df"}, {"one run", "C, f batch, FD Df"}}
+  core = NaN;
+  tok = regexp (txt, ['\| ' row{1}{1} ' \| auto \| ([0-9.]+) \|'], "tokens", "once");
+  if (! isempty (tok))
+    core = 1e-6 * str2double (tok{1});
+  endif
+  rows_(end+1, :) = {sprintf("K2' the same (least of 5), against CORE.md's step (%s)", row{1}{2}), ...
+                     "-", sprintf("%s (C: %s)", us(tl), us(core)), sprintf("%.2f", tl / core), ...
+                     "<= 1.5", met_text(tl / core <= 1.5)};
+endfor
 
 ## ---------------------------------------------------------------- S1
 if (have_sym)
