@@ -230,7 +230,16 @@
 %!test check_bad (all3, "", "^an error without identifier$", @(t, y) error ("an error without identifier"), [0 1], y0);
 %!test check_bad (all3, "Octave:index-out-of-bounds", "^index \\(7\\): out of bound|^y\\(7\\): out of bound", @(t, y) [y(2); y(7)], [0 1], y0);
 %!test check_bad (all3, "Octave:undefined-function", "^'undefined_thing_xyz' undefined", @(t, y) [y(2); undefined_thing_xyz], [0 1], y0);
-%!test check_bad (all3, "Octave:invalid-fun-call", "^bi_noout: function called with too many outputs", @bi_noout, [0 1], y0);
+## a function that returns nothing: named with the solver, at its first call
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return dy/dt = f\\(t, y\\), but returns nothing; calling it at t = 0 gave: bi_noout: function called with too many outputs", @bi_noout, [0 1], y0);
+%!test check_bad (all3, "Octave:invalid-input-arg", "FCN must return dy/dt = f\\(t, y\\), but returns nothing; calling it at t = 0 gave: .*called with too many outputs", @(t, y) assert (true), [0 1], y0);
+%!test check_bad ({@odeSE, @odeSV}, "Octave:invalid-input-arg", "FCN must return the acceleration a\\(t, q\\), but returns nothing; .*called with too many outputs", @(t, q) assert (true), [0 1], y0, struct ("SecondOrder", "on"));
+%!test check_bad (all3, "Octave:invalid-input-arg", "OutputFcn must return STOP \\(true to end the run\\), but returns nothing; calling it at t = 0\\.[0-9]+ gave: .*called with too many outputs", f, [0 1], y0, struct ("OutputFcn", @(t, y, flag) assert (true), "TimeStepSize", 0.1));
+%!test check_bad (all3, "Octave:invalid-input-arg", "the Jacobian function must return a matrix, but returns nothing; calling it at t = 0 gave: .*called with too many outputs", f, [0 1], y0, struct ("Jacobian", @(t, y) assert (true)));
+%!test check_bad (spvi, "Octave:invalid-input-arg", "HamiltonianHessFcn must return a matrix, but returns nothing; calling it at t = 0 gave: .*called with too many outputs", f, [0 1], y0, struct ("HamiltonianHessFcn", @(t, y) assert (true)));
+%!test check_bad ({@odeSV, @odeSPVI}, "Octave:invalid-input-arg", "StepDensityFcn must return a real scalar, but returns nothing; calling it at t = 0 gave: .*called with too many outputs", f, [0 1], y0, struct ("StepControl", "reversible", "RelTol", 1e-3, "StepDensityFcn", @(t, y) assert (true)));
+%!error <odeSV: the Hamiltonian must return a real scalar, but returns nothing; calling it at t = 0 gave: .*called with too many outputs>
+%! s = odeSV (@(t, y) [y(2); -y(1)], [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "Hamiltonian", @(t, y) assert (true)));
 %!test check_bad (all3, "mytest:extra", "^extra parameter 7$", @(t, y, a) error ("mytest:extra", "extra parameter %d", a), [0 1], y0, [], 7);
 %!test check_bad (all3, "mytest:jac", "^my Jacobian failure$", f, [0 1], y0, struct ("Jacobian", @(t, y) error ("mytest:jac", "my Jacobian failure")));
 %!test check_bad (all3, "mytest:hess", "^my Hessian failure$", f, [0 1], y0, struct ("HamiltonianHessFcn", @(t, y) error ("mytest:hess", "my Hessian failure")));

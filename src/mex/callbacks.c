@@ -354,7 +354,9 @@ symmex_jac_value (symmex_ctx *c, double t, const double *y)
       mxDestroyArray (out[0]);
       return out[1];
     }
-  symmex_call (1, out, c->nargs, c->jargs, c->jname);
+  symmex_call_cb (c, SYMMEX_CB_JAC, out, c->nargs, c->jargs, c->jname,
+                  c->jac_source == JAC_FCN ? "the Jacobian function"
+                  : "HamiltonianHessFcn", "a matrix");
   return out[0];
 }
 
@@ -554,7 +556,8 @@ symmex_cb_density (double t, const double *y, double *rho, void *user)
   mxGetPr (c->dargs[1])[0] = t;
   memcpy (mxGetPr (c->dargs[2]), y, sizeof (double) * c->n);
   mxArray *out = NULL;
-  symmex_call (1, &out, c->nargs, c->dargs, c->dname);
+  symmex_call_cb (c, SYMMEX_CB_DENSITY, &out, c->nargs, c->dargs, c->dname,
+                  "StepDensityFcn", "a real scalar");
   const double *v = symmex_checked (c, &out, 1, "StepDensityFcn", 0, t,
                                     "a real scalar");
   /* the core refuses a value that is not positive and finite */

@@ -76,7 +76,11 @@ symmex_outputfcn (symmex_ctx *c, const double *t, int nt, const double *y,
   c->oargs[3] = mxCreateString (flag);
   int nout = strcmp (flag, "") == 0 ? 1 : 0;
   mxArray *out[1] = { NULL };
-  symmex_call (nout, out, c->nargs + 1, c->oargs, c->oname);
+  if (nout)
+    symmex_call_cb (c, SYMMEX_CB_OUTPUT, out, c->nargs + 1, c->oargs,
+                    c->oname, "OutputFcn", "STOP (true to end the run)");
+  else
+    symmex_call (0, out, c->nargs + 1, c->oargs, c->oname);
   int stop = nout && out[0] ? stop_flag (c, out, t ? t[0] : NAN) : 0;
   if (out[0])
     mxDestroyArray (out[0]);
@@ -243,7 +247,8 @@ symmex_energy (symmex_ctx *c)
       mxArray *out[1] = { NULL };
       mxGetPr (args[1])[0] = c->tbuf[r];
       memcpy (mxGetPr (args[2]), symmex_row (c, r), sizeof (double) * n);
-      symmex_call (1, out, c->nargs, args, name);
+      symmex_call_cb (c, SYMMEX_CB_HAMILTONIAN, out, c->nargs, args, name,
+                      "the Hamiltonian", "a real scalar");
       c->hbuf[r] = symmex_checked (c, out, 1, "the Hamiltonian", 0,
                                    c->tbuf[r], "a real scalar")[0];
       mxDestroyArray (out[0]);

@@ -86,42 +86,41 @@ check_nargout (const symmex_ctx *c, const mxArray *f, const char *what,
                      "got %g", c->solver, what, outs, k);
 }
 
-/* SecondOrder: FCN (t, q) with the d positions alone.  An FCN written for
-   y = [q; p] indexes past q at its first call: that error is said as
-   the solver's, with the original message, rather than Octave's alone.
-   The call goes through cellfun's ErrorHandler, which keeps the error's
-   message (a trapped call of a MEX function does not); any other error
-   of FCN is raised again as it came. */
-static void
-first_call_second_order (symmex_ctx *c, mxArray **out)
+/* The call goes through cellfun's ErrorHandler, which keeps the error's
+   message (a trapped call of a MEX function does not).  SecondOrder: an
+   FCN (t, q) written for y = [q; p] indexes past q; a function that
+   returns nothing is called with too many outputs. */
+void
+symmex_call_first (symmex_ctx *c, mxArray **out, int nargs, mxArray **args,
+                   const char *what, const char *expect, int index_hint)
 {
   mxArray *in[16], *cells[16];
-  const int nin = c->nargs + 5;
+  const int nin = nargs + 5;
   if (nin > 16)
     {
-      symmex_call (1, out, c->nargs, c->args, c->fname);
+      symmex_call (1, out, nargs, args, "");
       return;
     }
   mxArray *h = NULL, *hs = mxCreateString ("@(e, varargin) struct "
                                            "(\"symplectic_error__\", e)");
   mexCallMATLAB (1, &h, 1, &hs, "str2func");
   mxDestroyArray (hs);
-  in[0] = (mxArray *) c->args[0];
-  for (int i = 1; i < c->nargs; i++)
+  in[0] = (mxArray *) args[0];
+  for (int i = 1; i < nargs; i++)
     {
       cells[i] = mxCreateCellMatrix (1, 1);
-      mxSetCell (cells[i], 0, mxDuplicateArray (c->args[i]));
+      mxSetCell (cells[i], 0, mxDuplicateArray (args[i]));
       in[i] = cells[i];
     }
-  in[c->nargs] = mxCreateString ("ErrorHandler");
-  in[c->nargs + 1] = h;
-  in[c->nargs + 2] = mxCreateString ("UniformOutput");
-  in[c->nargs + 3] = mxCreateLogicalScalar (0);
+  in[nargs] = mxCreateString ("ErrorHandler");
+  in[nargs + 1] = h;
+  in[nargs + 2] = mxCreateString ("UniformOutput");
+  in[nargs + 3] = mxCreateLogicalScalar (0);
   mxArray *res = NULL;
   mexCallMATLAB (1, &res, nin - 1, in, "cellfun");
-  for (int i = 1; i < c->nargs; i++)
+  for (int i = 1; i < nargs; i++)
     mxDestroyArray (cells[i]);
-  for (int i = c->nargs; i < nin - 1; i++)
+  for (int i = nargs; i < nin - 1; i++)
     mxDestroyArray (in[i]);
   mxArray *v = mxGetCell (res, 0);
   const mxArray *e = v && mxIsStruct (v)
@@ -136,13 +135,20 @@ first_call_second_order (symmex_ctx *c, mxArray **out)
   const mxArray *mi = mxGetField (e, 0, "identifier");
   char *msg = mm && mxIsChar (mm) ? mxArrayToString (mm) : NULL;
   char *id = mi && mxIsChar (mi) ? mxArrayToString (mi) : NULL;
-  if (id && strcmp (id, "Octave:index-out-of-bounds") == 0)
+  const double t = mxGetNumberOfElements (args[1]) >= 1
+                   && mxIsDouble (args[1]) ? mxGetPr (args[1])[0] : NAN;
+  if (index_hint && id && strcmp (id, "Octave:index-out-of-bounds") == 0)
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: with SecondOrder on, FCN is "
                        "called as FCN (t, q), q the first half of Y0 (%d "
                        "of its %d elements), and must return the "
                        "acceleration a(t, q) of as many; calling it at "
-                       "t = %.15g gave: %s", c->solver, c->d, c->n,
-                       mxGetScalar (c->args[1]), msg ? msg : "");
+                       "t = %.15g gave: %s", c->solver, c->d, c->n, t,
+                       msg ? msg : "");
+  if (id && strcmp (id, "Octave:invalid-fun-call") == 0 && msg
+      && strstr (msg, "called with too many outputs"))
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: %s must return %s, but returns "
+                       "nothing; calling it at t = %.15g gave: %s",
+                       c->solver, what, expect, t, msg);
   /* the user's own error, as it came */
   mxArray *st = mxCreateStructMatrix (1, 1, 0, NULL);
   mxSetFieldByNumber (st, 0, mxAddField (st, "message"),
@@ -150,6 +156,20 @@ first_call_second_order (symmex_ctx *c, mxArray **out)
   mxSetFieldByNumber (st, 0, mxAddField (st, "identifier"),
                       mxCreateString (id ? id : ""));
   mexCallMATLAB (0, NULL, 1, &st, "rethrow");
+}
+
+void
+symmex_call_cb (symmex_ctx *c, int cb, mxArray **out, int nargs,
+                mxArray **args, const char *name, const char *what,
+                const char *expect)
+{
+  if (c->called & (1u << cb))
+    symmex_call (1, out, nargs, args, name);
+  else
+    {
+      c->called |= 1u << cb;
+      symmex_call_first (c, out, nargs, args, what, expect, 0);
+    }
 }
 
 /* Vectorized: FCN (t, Y) must give, in column j, FCN (t, Y(:,j)).
@@ -226,10 +246,10 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess, int keep_f0)
       else if (out[1] && ! mxIsEmpty (out[1]))
         have2 = 1;
     }
-  if (! out[0] && c->second_order)
-    first_call_second_order (c, out);
-  else if (! out[0])
-    symmex_call (1, out, c->nargs, c->args, c->fname);
+  if (! out[0])
+    symmex_call_first (c, out, c->nargs, c->args, "FCN", c->second_order
+                       ? "the acceleration a(t, q)" : "dy/dt = f(t, y)",
+                       c->second_order);
   c->probe_calls = c->probe_states = 1;
   const double *v = symmex_checked (c, &out[0], c->nf, "FCN", 0,
                                     a->tspan[0], c->second_order

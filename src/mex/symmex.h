@@ -224,7 +224,12 @@ typedef struct symmex_ctx_s {
   double *hbuf, max_dh;
   /* FCN is compiled (symcompile): its functions, or NULL */
   struct symmex_compiled_s *compiled;
+  unsigned called;             /* bits 1 << SYMMEX_CB_*: called once */
 } symmex_ctx;
+
+/* the user's functions whose first call is checked (symmex_call_cb) */
+enum { SYMMEX_CB_JAC, SYMMEX_CB_OUTPUT, SYMMEX_CB_DENSITY,
+       SYMMEX_CB_HAMILTONIAN };
 
 /* The context of a run: FCN probed at (t0, y0) (its size and values,
    FCN (t, q) returning a when second_order, and, when need_jac, whether it
@@ -268,6 +273,18 @@ int symmex_cb_density (double t, const double *y, double *rho, void *user);
 /* a user's function: args = {f, t, y, ...}, by name when it has one */
 void symmex_call (int nout, mxArray **out, int nargs, mxArray **args,
                   const char *name);
+/* The first call of a user's function with one output (what: how the
+   help names it, expect: what it must return), through cellfun's
+   ErrorHandler: a function that cannot return a value, and (index_hint)
+   an FCN for SecondOrder that indexes past q, get an error that names
+   the solver and the function; any other error is raised as it came */
+void symmex_call_first (symmex_ctx *c, mxArray **out, int nargs,
+                        mxArray **args, const char *what, const char *expect,
+                        int index_hint);
+/* symmex_call of the callback cb: its first call by symmex_call_first */
+void symmex_call_cb (symmex_ctx *c, int cb, mxArray **out, int nargs,
+                     mxArray **args, const char *name, const char *what,
+                     const char *expect);
 /* the name f can be called by (into name), or "" for feval */
 void symmex_direct_name (const mxArray *f, char *name, size_t len);
 /* a value returned by FCN or the Hessian: checked, as doubles */
