@@ -623,7 +623,7 @@ scenario_newton (void)
   sym_newton nw;
   CHECK (sym_newton_init (&nw, 3, NULL) == 0, "newton init");
   cube c = { { 1, 8, 27 }, 0, 0 };
-  sym_newton_problem p = { cube_res, cube_mat, &c, NULL, NULL };
+  sym_newton_problem p = { cube_res, cube_mat, &c, NULL, NULL, NULL };
   double x[3] = { 1.1, 2.1, 2.9 }, sc[3] = { 1, 1, 1 };
   sym_counters cnt;
   memset (&cnt, 0, sizeof cnt);
@@ -650,7 +650,7 @@ scenario_newton (void)
   CHECK (fabs (r[0]) + fabs (r[1]) < 1e-12, "residual after refresh");
   CHECK (c.nmat > nmat1, "matrix refreshed");
   /* no solution: fails cleanly */
-  sym_newton_problem bad = { cube_bad_res, cube_mat, &c, NULL, NULL };
+  sym_newton_problem bad = { cube_bad_res, cube_mat, &c, NULL, NULL, NULL };
   sym_newton_invalidate (&nw);
   double xb[3] = { 1, 1, 1 };
   int st = sym_newton_solve (&nw, &bad, xb, sc, &cnt);

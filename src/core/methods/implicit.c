@@ -389,7 +389,7 @@ sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
   const double *p0 = r->trial->y0 + d;
   sym_newton_problem prob = { kick_residual, kick_matrix, (void *) kk,
                               kk->k->sparse ? kick_factor : NULL,
-                              kk->k->sparse ? kick_lsolve : NULL };
+                              kk->k->sparse ? kick_lsolve : NULL, NULL };
   double *xb = kk->pr->xb;
   int kind = kick_explicit (kk, r, cont, prev, xb);
   /* f(t_k, y_k) is evaluated when there is no explicit start without it,

@@ -333,7 +333,7 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
       s->pk = ph;
       sym_newton_problem pq = { res_q, mat_q, s,
                                 s->o.sparse ? factor_q : NULL,
-                                s->o.sparse ? lsolve_q : NULL };
+                                s->o.sparse ? lsolve_q : NULL, NULL };
       double *base = s->o.pr[1].xb;
       for (int i = 0; i < d; i++)
         base[i] = v.q0[i] + h * s->fqa[i];

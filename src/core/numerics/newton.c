@@ -90,13 +90,18 @@ int
 sym_newton_dx (sym_newton *nw, const sym_newton_problem *p, const double *x,
                const double *scale, sym_counters *c, double *dxn)
 {
-  int st = p->residual (p->ctx, x, nw->r);
-  if (st)
-    return st;
-  for (int i = 0; i < nw->n; i++)
-    nw->dx[i] = -nw->r[i];
-  st = p->solve ? p->solve (p->ctx, nw->dx, c)
-                : sym_lu_solve (&nw->lu, nw->dx, c);
+  int st;
+  if (p->correction)
+    st = p->correction (p->ctx, x, nw->dx);
+  else
+    {
+      if ((st = p->residual (p->ctx, x, nw->r)))
+        return st;
+      for (int i = 0; i < nw->n; i++)
+        nw->dx[i] = -nw->r[i];
+      st = p->solve ? p->solve (p->ctx, nw->dx, c)
+                    : sym_lu_solve (&nw->lu, nw->dx, c);
+    }
   if (! st && scale && dxn)
     *dxn = scaled_norm (nw->n, nw->dx, scale);
   return st;

@@ -129,6 +129,9 @@ typedef struct {
      when singular); solve b <- G'(x) \ b with those factors */
   int (*factor) (void *ctx, const double *x, sym_counters *c);
   int (*solve) (void *ctx, double *b, sym_counters *c);
+  /* optional (NULL: residual and solve): dx = -A^-1 G(x) at once, for a
+     fixed matrix A whose correction is a map of x (a fixed point) */
+  int (*correction) (void *ctx, const double *x, double *dx);
 } sym_newton_problem;
 
 enum { SYM_NEWTON_SIMPLIFIED = 0, SYM_NEWTON_FULL = 1 };

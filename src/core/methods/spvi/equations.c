@@ -148,8 +148,8 @@ spvi_eval_shift (spvi_core *c, const double *x)
    before it in the same solve is kept in Fo (at xfo), and the sizes of the
    first two moves between evaluations (the first two corrections) in
    dxn. */
-static int
-eval (spvi_core *c, const double *x)
+int
+spvi_eval (spvi_core *c, const double *x)
 {
   size_t nb = (size_t) c->N * sizeof (double);
   if (c->fvalid && memcmp (c->xf, x, nb) == 0)
@@ -171,7 +171,7 @@ spvi_residual (void *ctx, const double *x, double *r)
   const int d = c->d, n = c->n, m = c->m, nn = 2 * d;
   const double *a = x, *P = x + (size_t) (n - 1) * d, *pk = c->yk + d;
   const double hh = 0.5 * c->h;
-  int st = eval (c, x);
+  int st = spvi_eval (c, x);
   if (st)
     return st;
   for (int s = 1; s < n; s++)

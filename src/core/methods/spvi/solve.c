@@ -213,7 +213,8 @@ spvi_solve (spvi_core *c, sym_eval *ev, double t, double h,
   c->nw.maxit = c->fp ? fmax (s->maxit, SYM_SPVI_FP_MAXIT) : s->maxit;
   sym_newton_problem prob = { spvi_residual, spvi_matrix, c,
                               c->sg ? spvi_stages_factor : NULL,
-                              c->sg ? spvi_stages_solve : NULL };
+                              c->sg ? spvi_stages_solve : NULL,
+                              c->fp && fast ? spvi_fp_correction : NULL };
   int st = sym_newton_solve (&c->nw, &prob, c->x, c->scale, &ev->st.cnt);
   if (c->fp && (st == SYM_NEWTON_FAIL || c->nw.iters > SYM_SPVI_FP_SLOW))
     {
@@ -226,6 +227,7 @@ spvi_solve (spvi_core *c, sym_eval *ev, double t, double h,
         {
           memcpy (c->x, c->nw.x0, (size_t) N * sizeof (double));
           set_fp (c, 0);
+          prob.correction = NULL;
           every = prepare_matrix (c, ev, s, h);
           c->nw.maxit = s->maxit;
           st = sym_newton_solve (&c->nw, &prob, c->x, c->scale,

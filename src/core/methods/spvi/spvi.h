@@ -219,6 +219,8 @@ void spvi_core_free (spvi_core *c);
 void spvi_states (spvi_core *c, const double *x);
 /* before a new evaluation at x: the last one becomes the one before it */
 void spvi_eval_shift (spvi_core *c, const double *x);
+/* F = f at the nodes of x (one batch call), unless F is already at x */
+int spvi_eval (spvi_core *c, const double *x);
 /* the residual (R1, R2) at x (sym_newton_problem's residual) */
 int spvi_residual (void *ctx, const double *x, double *r);
 /* after the solve: f_p of the last evaluation moved to the final x by the
@@ -262,6 +264,8 @@ void spvi_stages_noise (spvi_core *c, const double *qa, const double *pa);
 /* ----------------------------------------------------------- staged_solve.c */
 /* sym_newton_problem's solve */
 int spvi_stages_solve (void *ctx, double *b, sym_counters *cnt);
+/* sym_newton_problem's correction of the fixed point (c->fp) */
+int spvi_fp_correction (void *ctx, const double *x, double *dx);
 
 /* ---------------------------------------------------------------- solve.c */
 /* Solve the step (t, h, yk) from the start c->x to tol (relative to the

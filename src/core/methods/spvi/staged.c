@@ -141,6 +141,7 @@ transforms (spvi_core *c, spvi_stages *g)
       }
   if (! (diff <= SYM_SPVI_STAGE_SAME * smax))
     goto done;
+  memcpy (g->wg, S, mm * sizeof (double));   /* (geev overwrites S) */
   int info = sym_geev (m, S, wr, wi, vr, work, 4 * m + (int) mm);
   if (info)
     goto done;
@@ -248,7 +249,7 @@ spvi_stages_init (spvi_core *c, int sparse)
   g->rq = sym_calloc (4 * mm, sizeof (double complex));
   g->wv = sym_calloc (nn, sizeof (double));
   g->J = sparse ? NULL : sym_calloc (nn * nn, sizeof (double));
-  g->dinv = sym_calloc (2 * mm, sizeof (double));
+  g->dinv = sym_calloc (3 * mm, sizeof (double));
   g->fw = sym_calloc (c->N, sizeof (double));
   if (! g->rq || ! g->wv || (! sparse && ! g->J) || ! g->dinv || ! g->fw
       || (sparse && sym_csc_init (&g->Js, (int) nn, 0)))
@@ -257,6 +258,7 @@ spvi_stages_init (spvi_core *c, int sparse)
   g->bq = g->rq + 2 * mm;
   g->bp = g->rq + 3 * mm;
   g->wdinv = g->dinv + mm;
+  g->wg = g->dinv + 2 * mm;
   int st = transforms (c, g);
   if (st == -1 && sparse)
     {

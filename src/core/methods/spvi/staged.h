@@ -37,6 +37,8 @@ struct spvi_stages {
      to the da by -D^-1 and the R1 rows to the dP by Wd^-1 (real m x m,
      column-major), without the transforms */
   double *dinv, *wdinv;
+  double *wg;                   /* S = Wd^-1 G (m x m): the fixed point's
+                                   P from the nodes' f_p */
   double *fw;                   /* work: N */
   /* the pairs n - 1 != m with a sparse J: no stages (ns = 0), the whole
      system M, assembled sparse as M - I (lu[0], factored as I + (M - I))

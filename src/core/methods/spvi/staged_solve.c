@@ -228,3 +228,34 @@ spvi_stages_solve (void *ctx, double *b, sym_counters *cnt)
     }
   return st;
 }
+
+/* The fixed point's correction as a map (sym_newton_problem's
+   correction): with J = 0, x + M^-1 (-R(x)) is a = -(h/2) D^-1 F_q and
+   P = p_k - (h/2) Wd^-1 G F_p (dinv is -D^-1), so the new iterate comes from f at the
+   nodes alone, without the residual's linear part. */
+int
+spvi_fp_correction (void *ctx, const double *x, double *dx)
+{
+  spvi_core *c = ctx;
+  const spvi_stages *g = c->sg;
+  const int d = c->d, m = c->m;
+  const size_t md = (size_t) m * d, nn = 2 * (size_t) d;
+  const double hh = 0.5 * c->h, *pk = c->yk + d;
+  int st = spvi_eval (c, x);
+  if (st)
+    return st;
+  for (int j = 0; j < m; j++)
+    for (int k = 0; k < d; k++)
+      {
+        double sa = 0.0, sp = 0.0;
+        for (int r = 0; r < m; r++)
+          {
+            sa += g->dinv[j + r * m] * c->F[(size_t) r * nn + k];
+            sp += g->wg[j + r * m] * c->F[(size_t) r * nn + d + k];
+          }
+        const size_t i = (size_t) j * d + k;
+        dx[i] = -hh * sa - x[i];
+        dx[md + i] = (pk[k] - hh * sp) - x[md + i];
+      }
+  return SYM_SUCCESS;
+}
