@@ -230,9 +230,9 @@ spvi_stages_solve (void *ctx, double *b, sym_counters *cnt)
 }
 
 /* The fixed point's correction as a map (sym_newton_problem's
-   correction): with J = 0, x + M^-1 (-R(x)) is a = -(h/2) D^-1 F_q and
-   P = p_k - (h/2) Wd^-1 G F_p (dinv is -D^-1), so the new iterate comes from f at the
-   nodes alone, without the residual's linear part. */
+   correction): with J = 0, x + M^-1 (-R(x)) is a = (h/2) D^-1 F_q (dinv
+   is -D^-1) and P = p_k - (h/2) Wd^-1 G F_p, so the new iterate comes
+   from f at the nodes alone, without the residual's linear part. */
 int
 spvi_fp_correction (void *ctx, const double *x, double *dx)
 {
