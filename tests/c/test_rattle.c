@@ -208,8 +208,10 @@ test_pendulum (int so, int has_G)
   double dev = 0.0;
   for (int i = 0; i < 4; i++)
     dev = fmax (dev, fabs (bk.last[i] - y0[i]));
-  CHECK (st == SYM_DONE && dev <= 1e-10, "so %d: back to y0 within %g",
-         so, dev);
+  /* differences of g carry round-off of eps^(2/3) that the way back
+     meets at other points */
+  CHECK (st == SYM_DONE && dev <= (has_G ? 1e-10 : 1e-9),
+         "so %d G %d: back to y0 within %g", so, has_G, dev);
   /* Refine's rows (the dense output) near the manifold */
   sink rf = { 2, pend_check, 0, 0, { 0 }, 0 };
   st = run (&sys, &own, &cs, 10.0, 0.01, 0, 4, y0, &rf);

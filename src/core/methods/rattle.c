@@ -15,10 +15,11 @@
    (h^2/2) G(q^0) A G(q_k)' (q^0 the first iterate, A = d f_q / d p: I
    with second_order, else forward differences of f_q along the columns
    of G(q_k)', m calls); mu by one linear solve with second_order, else by
-   simplified Newton in the same way.  A solve stops when its correction
-   is below max(1e-2 NewtonTol, 16 eps) of q's (p's) size, or stagnates
-   at round-off; one that does not is a failure (SYM_NEWTON_FAIL), never
-   a step.  Symmetric and symplectic on the manifold, order 2.
+   simplified Newton in the same way.  A solve stops when its correction,
+   or the next one as the rate of the last two predicts it, is below
+   max(1e-2 NewtonTol, 16 eps) of q's (p's) size, or it stagnates at
+   round-off; one that does not is a failure (SYM_NEWTON_FAIL), never a
+   step.  Symmetric and symplectic on the manifold, order 2.
 
    Fixed steps only (no error estimate).  Dense output: the cubic
    Hermite interpolant with the constrained derivatives at the ends
@@ -182,11 +183,16 @@ factor_gw (sym_lu *lu, int m, int d, const double *G, const double *W,
 }
 
 /* a correction of size size (prev: the last one's) ends the solve: below
-   tol of the scale, or no longer shrinking at round-off */
+   tol of the scale, or the next one, by the rate theta = size / prev the
+   two show, theta / (1 - theta) size below it, or no longer shrinking at
+   round-off */
 static int
 converged (double size, double prev, double tol, double scale)
 {
+  const double theta = size / prev;
   return size <= tol * scale
+         || (isfinite (prev) && theta < 0.5
+             && theta / (1.0 - theta) * size <= tol * scale)
          || (size <= 1e3 * DBL_EPSILON * scale && size > 0.5 * prev);
 }
 
@@ -408,7 +414,6 @@ rattle_step (void *state, sym_eval *ev, double t, double h, double tend,
   if (st)
     return st;
   const int d = v.d, n = 2 * d, m = s->m;
-  const double hh = 0.5 * h;
   if ((st = sym_recs_f0 (&s->o.r, ev)))
     return st;
   const double *f0 = v.tr->f0;
@@ -446,7 +451,6 @@ rattle_step (void *state, sym_eval *ev, double t, double h, double tend,
   gt_axpy (m, d, s->G0, -1.0, s->lam, d0 + d);
   memcpy (d1, f1, (size_t) n * sizeof (double));
   gt_axpy (m, d, G1, -1.0, mu, d1 + d);
-  (void) hh;
   return sym_recs_finish (&s->o.r, ev, 0, NULL, ynext);
 }
 
