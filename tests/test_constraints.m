@@ -202,6 +202,31 @@
 %! x = odeSV (fso, [0 1], y0, symplecticset (o1, "TimeStepSize", 0.1));
 %! assert (lastwarn (), "");
 
+## a solve that fails on the multipliers (too few iterations; G rank
+## deficient from t = 1 on): the warning, and the rows up to there
+%!test
+%! o = symplecticset (o1, "TimeStepSize", 0.1);
+%! lastwarn ("");
+%! [t, y] = odeSV (fso, [0 1], y0, symplecticset (o, "MaxNewtonIterations", 1));
+%! [~, id] = lastwarn ();
+%! assert (id, "symplectic:newton-failed");
+%! assert (rows (y), 1);
+%! lastwarn ("");
+%! [t, y] = odeSV (fso, [0 3], y0, symplecticset (o, "Constraints",
+%!                 @(q) deal (q' * q - 1, 2 * q' * (q(1) > 0.5))));
+%! [msg, id] = lastwarn ();
+%! assert (id, "symplectic:newton-failed");
+%! assert (t(end), 1, 1e-12);
+%! assert (rows (y), 11);
+
+## a sol as Y0 goes on with the same steps
+%!test
+%! o = symplecticset (o1, "TimeStepSize", 0.1);
+%! sol = odeSV (fso, [0 1], y0, o);
+%! sol2 = odeSV (fso, [1 2], sol, o);
+%! [t, y] = odeSV (fso, [0 2], y0, o);
+%! assert (sol2.y(:,end), y(end,:)', 1e-14);
+
 ## what this release does not take: said, naming the solver and option
 %!test
 %! check_bad ("Octave:invalid-input-arg", "odeSE: Constraints is not supported by odeSE yet",
