@@ -219,6 +219,14 @@
 %! assert (t(end), 1, 1e-12);
 %! assert (rows (y), 11);
 
+## Separable on for an H that is not: said, as without Constraints
+%!test
+%! lastwarn ("");
+%! [t, y] = odeSV (@(t, y) [y(3:4) * (1 + y(1)^2); 0; -1], [0 1], y0,
+%!                 symplecticset (o2, "TimeStepSize", 0.1));
+%! [~, id] = lastwarn ();
+%! assert (id, "symplectic:not-separable");
+
 ## a sol as Y0 goes on with the same steps
 %!test
 %! o = symplecticset (o1, "TimeStepSize", 0.1);

@@ -436,6 +436,10 @@ rattle_step (void *state, sym_eval *ev, double t, double h, double tend,
   memcpy (s->yw + d, s->ph, (size_t) d * sizeof (double));
   if ((st = sym_rhs (ev, tend, s->yw, s->fw)))
     return st;
+  /* f_q at p_{k+1/2} with q_k (before the last, tiny, correction) and
+     with q_{k+1}: the same if H is separable */
+  if (! s->o.second_order)
+    sym_sep_check (ev, t, d, s->fq1, s->fw);
   memcpy (s->fp1, s->fw + d, (size_t) d * sizeof (double));
   if ((st = con_eval (s->cs, d, v.q1, s->g, G1, s->cw)))
     return st;
