@@ -74,6 +74,15 @@
 ## Explicit steps sum their updates with compensation: on by default for
 ## every Method but Verlet's, and for reversible steps; @qcode{"off"}
 ## turns it off.
+## @item Constraints
+## Holonomic constraints g(q) = 0: a handle @code{g = con (q)}, m < d
+## values, or @code{[g, G] = con (q)} with G = dg/dq (m-by-d, full or
+## sparse, taken as full; else central differences).  The steps are
+## RATTLE's: order 2, symmetric, symplectic on g = 0, which they keep to
+## round-off with G(q) dH/dp = 0.  A @var{y0} off them is moved onto them
+## with a warning (an error past 1e-2 of the largest |y0_i|).  Fixed
+## steps with @code{Separable} or @code{SecondOrder} only in this release
+## (not adaptive or reversible steps, Method, Ensemble, a general H).
 ## @item Jacobian, HamiltonianHessFcn, JPattern
 ## Other sources of Newton's matrix, as in @code{odeSE}.
 ## @item Vectorized

@@ -78,6 +78,13 @@
 ## @item Dense
 ## @qcode{"on"}: @code{sol} keeps each step's dense output, which
 ## @code{symdeval} evaluates at any time.  Default @qcode{"off"}.
+## @item Constraints
+## odeSV: handle @code{g = con (q)} of the holonomic constraints
+## g(q) = 0 (m < d values at the d positions), or @code{[g, G] = con (q)}
+## with G = dg/dq (m-by-d, full or sparse, taken as full); without G,
+## central differences.  The steps are RATTLE's (order 2, symmetric,
+## symplectic on the constraints), fixed steps with @code{Separable} or
+## @code{SecondOrder} on.  Default: none.
 ## @item Ensemble, Parallel
 ## @qcode{"on"}: the columns of @var{y0} are the initial states of
 ## members integrated together; the number of local processes to split
@@ -112,6 +119,7 @@ function opts = symplecticset (varargin)
                        "HamiltonianHessFcn", "Separable", "Explicit", ...
                        "SecondOrder", "Method", "CompensatedSummation", ...
                        "VerletForm", ...
+                       "Constraints", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
                        "NewtonSystem", "NonlinearSolver", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
                        "StepDensityFcn", "Ensemble", "Parallel"};
@@ -131,6 +139,7 @@ function opts = symplecticset (varargin)
     printf ("             Method:  string, [\"verlet\"] (odeSV)\n");
     printf ("CompensatedSummation: {\"off\", \"on\"}, [on for Method's and reversible explicit steps]\n");
     printf ("         VerletForm:  {[\"velocity\"], \"position\"} (odeSV)\n");
+    printf ("        Constraints:  function handle, [] (odeSV)\n");
     printf ("          NewtonTol:  scalar, >0, [1e-14]\n");
     printf ("MaxNewtonIterations:  integer, >0, [10]\n");
     printf ("       NewtonMatrix:  {[\"auto\"], \"kept\", \"new\"}\n");

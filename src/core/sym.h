@@ -291,6 +291,19 @@ void sym_sep_check (sym_eval *ev, double t, int k, const double *u,
 /* ---------------------------------------------------------------- methods */
 /* Options common to the methods; a method's own options come as its own
    struct through own (NULL: its defaults). */
+/* Holonomic constraints g(q) = 0 (m values, m < d) for RATTLE
+   (sym_step_rattle): con fills g (m) and, when G is not NULL, G = dg/dq
+   (m-by-d, column-major); has_G 0: con never fills G, the core takes
+   central differences of g.  A status as for sym_rhs_fn. */
+typedef int (*sym_con_fn) (const double *q, double *g, double *G,
+                           void *user);
+typedef struct {
+  int m;
+  sym_con_fn con;
+  int has_G;
+  void *user;
+} sym_constraints;
+
 typedef struct {
   double newton_tol;   /* 0: SYM_NEWTON_TOL */
   int max_newton;      /* 0: SYM_NEWTON_MAXIT */
@@ -298,6 +311,7 @@ typedef struct {
   int reversible;      /* the steps are reversible ones (the driver sets
                           it) */
   const void *own;
+  const sym_constraints *constraints;  /* RATTLE's (NULL: none) */
 } sym_method_opts;
 
 /* The tolerances of an adaptive run, as the driver's error test applies
@@ -363,6 +377,17 @@ typedef struct {
 } sym_onestep_opts;
 extern const sym_stepper_type *const sym_step_se;
 extern const sym_stepper_type *const sym_step_sv;
+/* RATTLE (opts->constraints required; own: a sym_onestep_opts with
+   separable or second_order on): Stoermer-Verlet with the multipliers of
+   g(q) = 0 and of its velocity constraint G(q) dH/dp = 0, explicit force
+   stages, fixed steps only (no error estimate); order 2, symmetric */
+extern const sym_stepper_type *const sym_step_rattle;
+/* Move y = [q; p] onto g(q) = 0 (q by minimum-norm Newton corrections)
+   and G(q) dH/dp = 0 (p along G(q)'); second_order: dH/dp = p, else
+   f_q of ev's rhs at t.  *dq, *dp: the largest change of q and of p. */
+int sym_constraints_project (const sym_constraints *cs, sym_eval *ev,
+                             int second_order, double t, double *y,
+                             double *dq, double *dp);
 
 /* A composition or splitting method as data.  SYM_COMPOSITION: the step
    is Stoermer-Verlet steps of gamma_i h, i = 1..stages (coef[i-1]), valid

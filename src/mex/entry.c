@@ -131,6 +131,8 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
     }
   sym_method_opts mo;
   memset (&mo, 0, sizeof mo);
+  if (o.constraints)
+    mo.constraints = symmex_constraints (c, &a, &sys);
   mo.newton_tol = o.newton_tol;
   mo.max_newton = o.max_newton;
   mo.own = own;

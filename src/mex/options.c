@@ -370,6 +370,11 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   o->densityfcn = function_opt (solver, opts, "StepDensityFcn");
   o->ensemble = (v = symmex_field (solver, opts, "Ensemble"))
                 ? symmex_on_off (solver, v, "Ensemble") : 0;
+  /* RATTLE's: odeSV only in this release */
+  o->constraints = function_opt (solver, opts, "Constraints");
+  if (o->constraints && strcmp (solver, "odeSV") != 0)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Constraints is not supported by "
+                       "%s yet; odeSV takes them (RATTLE)", solver, solver);
   parse_steps (solver, opts, o);
 
   /* odeset fields that would change the problem solved: not taken (a
@@ -482,7 +487,8 @@ static const char *const odeset_names[] = {
 static const char *const common_names[] = {
   "TimeStepSize", "TimeStepNumber", "HamiltonianHessFcn", "NewtonTol",
   "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", "StepControl",
-  "StepDensityFcn", "Ensemble", "Parallel", "__members__", NULL
+  "StepDensityFcn", "Ensemble", "Parallel", "__members__",
+  "Constraints", NULL
 };
 
 /* The edit distance of a and b, without regard to case */

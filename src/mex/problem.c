@@ -24,8 +24,8 @@ col (int n)
 /* What f declares, by Octave's nargin or nargout (QUERY); -1 where it
    declares nothing (varargin/varargout, anonymous outputs) or Octave
    cannot tell (built-in functions) */
-static double
-declared (const mxArray *f, const char *query)
+double
+symmex_declared (const mxArray *f, const char *query)
 {
   mxArray *in[1] = { (mxArray *) f }, *out[1] = { NULL };
   mxArray *ex = mexCallMATLABWithTrap (1, out, 1, in, query);
@@ -45,7 +45,7 @@ check_nargin (const symmex_ctx *c, const mxArray *f, const char *what,
 {
   if (! f)
     return;
-  const double k = declared (f, "nargin");
+  const double k = symmex_declared (f, "nargin");
   int fixed = 1;
   for (const char *p = form; *p; p++)
     fixed += *p == ',';
@@ -79,7 +79,7 @@ check_nargout (const symmex_ctx *c, const mxArray *f, const char *what,
 {
   if (! f)
     return;
-  const double k = declared (f, "nargout");
+  const double k = symmex_declared (f, "nargout");
   if (k < 0 || k >= need)
     return;
   mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: the %s function must return %s, "

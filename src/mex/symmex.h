@@ -133,6 +133,7 @@ typedef struct symmex_opts_s {
   int reversible;             /* StepControl "reversible" */
   const mxArray *densityfcn;  /* StepDensityFcn, or NULL */
   int ensemble;               /* Ensemble: the columns of Y0 are members */
+  const mxArray *constraints; /* Constraints (odeSV), or NULL */
 } symmex_opts;
 
 /* Parse OPTS (an odeset struct, a plain struct, or []) for a problem of
@@ -336,6 +337,17 @@ int symmex_compiled_dim (const symmex_compiled *k);
 int symmex_compiled_npar (const symmex_compiled *k);
 /* what 0 batch, 1 acceleration, 2 energy, 3 Hessian */
 int symmex_compiled_has (const symmex_compiled *k, int what);
+
+/* constraints.c: the Constraints function probed at q0 (its m, whether
+   it gives G), as the core's callback; Y0 projected onto the constraints
+   (a->y0 then points at the projected copy), with a warning when it
+   moved more than round-off, an error past SYMMEX_CON_FAR relative */
+#define SYMMEX_CON_FAR 1e-2
+const sym_constraints *symmex_constraints (symmex_ctx *c, symmex_args *a,
+                                           const sym_system *sys);
+/* What f declares, by Octave's nargin or nargout (query); -1 where it
+   declares nothing or Octave cannot tell */
+double symmex_declared (const mxArray *f, const char *query);
 
 /* ------------------------------------------------------------ outputs */
 /* the core's output and event sinks (user: the symmex_ctx) */

@@ -70,11 +70,33 @@ sv_parse (const char *solver, const mxArray *opts, void *own)
 /* Stoermer-Verlet's own stepper, with its adaptive steps, unless another
    method or compensated sums are asked for: those take the splitting
    stepper's fixed or reversible steps */
+/* Constraints: RATTLE, and what it does not do yet refused */
+static const sym_stepper_type *
+sv_rattle (const char *solver, const sym_onestep_opts *s,
+           const symmex_opts *o)
+{
+  const char *no = ! s->separable ? "a general H (implicit stages): set "
+                   "Separable (or SecondOrder) on"
+                   : s->method ? "Method (the compositions of RATTLE)"
+                   : o->reversible ? "StepControl \"reversible\""
+                   : ! symmex_fixed (o) ? "adaptive steps: give "
+                   "TimeStepSize or TimeStepNumber"
+                   : o->ensemble ? "Ensemble"
+                   : s->position ? "VerletForm \"position\""
+                   : s->compensated ? "CompensatedSummation" : NULL;
+  if (no)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Constraints takes fixed explicit "
+                       "RATTLE steps; not yet with %s", solver, no);
+  return sym_step_rattle;
+}
+
 static const sym_stepper_type *
 sv_stepper (const char *solver, const void *own, const symmex_opts *o)
 {
   const sym_onestep_opts *s = own;
   const sym_splitting *m = &sym_splittings[s->method];
+  if (o->constraints)
+    return sv_rattle (solver, s, o);
   if (s->method == 0 && ! s->compensated)
     return sym_step_sv;
   if (! symmex_fixed (o) && ! o->reversible)
