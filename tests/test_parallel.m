@@ -200,6 +200,26 @@
 %! [t, Y] = odeSV (f, [0 1], Y0, symplecticset (o, "Parallel", true));
 %!error <odeSV: Parallel must be a positive integer .* got a 1x2 double>
 %! [t, Y] = odeSV (f, [0 1], Y0, symplecticset (o, "Parallel", [2 2]));
+%!test
+%! ## a struct is no way into the processes' runs (they run their chunks
+%! ## through a private function): it is a bad value, as any other, the
+%! ## error before any other check of the arguments
+%! w = struct ("worker_nargout", 1, "members", [1 1]);
+%! msg = ": Parallel must be a positive integer (the number of processes) or the connections pconnect returned, got a ";
+%! cases = {@odeSV, {1}, "junk", w, ["odeSV" msg "1x1 struct"]
+%!          @odeSPVI, f, Y0, setfield(w, "members", [1 7]), ["odeSPVI" msg "1x1 struct"]
+%!          @odeSE, f, Y0, struct("worker_nargout", {2, 2}), ["odeSE" msg "1x2 struct"]};
+%! for i = 1:rows (cases)
+%!   try
+%!     r = cases{i,1} (cases{i,2}, [0 1], cases{i,3},
+%!                     symplecticset (o, "Parallel", cases{i,4}));
+%!     error ("no error");
+%!   catch err
+%!     assert (err.message, cases{i,5});
+%!     assert (err.identifier, "Octave:invalid-input-arg");
+%!   end_try_catch
+%! endfor
+
 %!error <odeSV: OPTS sets both Parallel and parallel>
 %! op = symplecticset (o, "Parallel", 2);  op.parallel = 3;
 %! [t, Y] = odeSV (f, [0 1], Y0, op);
