@@ -21,7 +21,8 @@
 ## The other process runs its chunk through @code{__ensemble_chunk__}
 ## (private, by its handle: no option of the solver reaches it), which
 ## returns the chunk's outputs, what it printed and warned, and its
-## error, in one struct.
+## error, in one struct.  Local processes: @code{__ensemble_local__}
+## (Ctrl-C, a process that dies).
 ## @end deftypefn
 
 function varargout = __ensemble_parallel__ (name, varargin)
@@ -116,33 +117,7 @@ function varargout = __ensemble_parallel__ (name, varargin)
   if (remote)
     res = run_remote (name, P, servers(1:nc), info(servers(1:nc)), jobs);
   else
-    ## a private function's handle reaches the other process with its
-    ## file (the gateway's by its name, on the path it is given there)
-    worker = @__ensemble_chunk__;
-    ## the processes it starts must not hold this one's pipes (the
-    ## symbolic package's Python would wait on them, and so Octave's exit)
-    __cloexec__ ();
-    ## each chunk keeps its process's id in a file of its own while it
-    ## runs: if the process dies, its file names the members it held
-    marks = tempname ();
-    mkdir (marks);
-    for c = 1:nc
-      jobs{c}.mark = fullfile (marks, sprintf ("%d", c));
-    endfor
-    unwind_protect
-      try
-        ## the package's own lines on a failure ("could not receive
-        ## result") are not the user's: the error below says what it was
-        evalc ("res = parcellfun (nc, worker, jobs, 'UniformOutput', false);");
-      catch err
-        worker_failed (name, marks, first, last, err);
-      end_try_catch
-    unwind_protect_cleanup
-      for c = 1:nc
-        [~, ~] = unlink (jobs{c}.mark);
-      endfor
-      [~, ~] = rmdir (marks);
-    end_unwind_protect
+    res = __ensemble_local__ (name, nc, jobs, first, last);
   endif
 
   ## a chunk's error is the run's (the first one, by member)
@@ -234,113 +209,6 @@ function need_parallel_package (name)
   if (exist ("parcellfun") != 2)
     error ("%s: Parallel needs the parallel package (Debian: octave-parallel; or pkg install -forge parallel)",
            name);
-  endif
-endfunction
-
-## parcellfun failed: a process of the parallel package ended without
-## returning its chunk (it exited, was killed, or crashed), or the
-## package itself failed.  The dead process is the one of the chunks
-## still running that has ended (an Octave that exits takes a moment):
-## it is reaped here, for how it ended.  Then the package ends all its
-## processes (they are started again by the next run), and any of this
-## run's that is left is killed and reaped: no process and no zombie
-## stays behind.  The error names the members the dead process held.
-function worker_failed (name, marks, first, last, err)
-  nc = numel (first);
-  pid = NaN (1, nc);
-  for c = 1:nc
-    ## (a chunk that ends meanwhile removes its file)
-    try
-      pid(c) = str2double (fileread (fullfile (marks, sprintf ("%d", c))));
-    catch
-    end_try_catch
-  endfor
-  held = find (isfinite (pid) & pid > 0);
-  dead = [];
-  how = {};
-  t0 = tic ();
-  while (! isempty (held))
-    for c = held
-      [p, st] = waitpid (pid(c), WNOHANG ());
-      if (p == pid(c))
-        dead(end+1) = c;
-        how{end+1} = ended_how (st);
-      elseif (p < 0 && ! exist (sprintf ("/proc/%d", pid(c)), "dir")
-              && exist ("/proc/self", "dir"))
-        dead(end+1) = c;   # not this process's child: gone, how unknown
-        how{end+1} = "ended";
-      endif
-    endfor
-    if (! isempty (dead) || toc (t0) > 1)
-      break;
-    endif
-    pause (0.01);
-  endwhile
-  ## the package ends its processes: its lines then ("could not save
-  ## variable"), and the SIGPIPE its write to the dead one raised, which
-  ## Octave reports at its next command run (system), are not the user's
-  try
-    evalc ("parcellfun_set_nproc (0); system ('true');");
-  catch
-  end_try_catch
-  for c = held
-    [ppid, state] = proc_parent (pid(c));
-    if (ppid == getpid ())
-      if (state != "Z")
-        kill (pid(c), SIG ().KILL);
-      endif
-      waitpid (pid(c));
-    endif
-  endfor
-  if (! isempty (dead))
-    parts = arrayfun (@(c, h) sprintf ("the process that ran members %d to %d %s before it returned them",
-                                       first(c), last(c), h{1}),
-                      dead, how, "UniformOutput", false);
-    msg = sprintf ("%s: Parallel: %s", name, strjoin (parts, "; "));
-  else
-    msg = sprintf ("%s: Parallel: a process of the parallel package failed (%s)",
-                   name, err.message);
-    if (! isempty (held))
-      parts = arrayfun (@(c) sprintf ("%d to %d", first(c), last(c)), held,
-                        "UniformOutput", false);
-      msg = sprintf ("%s; members %s were not done", msg,
-                     strjoin (parts, ", "));
-    endif
-  endif
-  error ("symplectic:parallel-worker", "%s", msg);
-endfunction
-
-function s = ended_how (st)
-  if (WIFEXITED (st))
-    s = sprintf ("exited with status %d", WEXITSTATUS (st));
-  elseif (WIFSIGNALED (st))
-    sig = SIG ();
-    fn = fieldnames (sig);
-    k = find (cellfun (@(f) sig.(f) == WTERMSIG (st), fn), 1);
-    if (isempty (k))
-      s = sprintf ("was killed by signal %d", WTERMSIG (st));
-    else
-      s = sprintf ("was killed by signal %d (SIG%s)", WTERMSIG (st), fn{k});
-    endif
-  else
-    s = "ended";
-  endif
-endfunction
-
-## A process's parent and state, from /proc (NaN where there is none).
-function [ppid, state] = proc_parent (pid)
-  ppid = NaN;
-  state = "";
-  try
-    s = fileread (sprintf ("/proc/%d/stat", pid));
-  catch
-    return;
-  end_try_catch
-  k = rindex (s, ")");   # the name, in parentheses, may hold blanks
-  v = strsplit (strtrim (s(k+1:end)), " ");
-  if (numel (v) >= 2)
-    state = v{1};
-    ppid = str2double (v{2});
   endif
 endfunction
 
