@@ -89,7 +89,12 @@
 ## @qcode{"on"}: the columns of @var{y0} are the initial states of
 ## members integrated together; the number of local processes to split
 ## them across, or the connections @code{pconnect} returned (package
-## @code{parallel}).  Default @qcode{"off"}, 1.
+## @code{parallel}; any other value is an error).  Default
+## @qcode{"off"}, 1.  A local process that dies holding members (FCN
+## calls @code{exit}, a crash, a signal) ends the call within about a
+## second with the error @code{symplectic:parallel-worker} naming them
+## and how the process ended; the package's processes are ended and
+## reaped then, and the next run starts new ones.
 ## @end table
 ##
 ## A name that neither @code{odeset} nor this package knows gets a

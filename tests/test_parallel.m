@@ -200,6 +200,26 @@
 %! [t, Y] = odeSV (f, [0 1], Y0, symplecticset (o, "Parallel", true));
 %!error <odeSV: Parallel must be a positive integer .* got a 1x2 double>
 %! [t, Y] = odeSV (f, [0 1], Y0, symplecticset (o, "Parallel", [2 2]));
+%!test
+%! ## a struct is no way into the processes' runs (they run their chunks
+%! ## through a private function): it is a bad value, as any other, the
+%! ## error before any other check of the arguments
+%! w = struct ("worker_nargout", 1, "members", [1 1]);
+%! msg = ": Parallel must be a positive integer (the number of processes) or the connections pconnect returned, got a ";
+%! cases = {@odeSV, {1}, "junk", w, ["odeSV" msg "1x1 struct"]
+%!          @odeSPVI, f, Y0, setfield(w, "members", [1 7]), ["odeSPVI" msg "1x1 struct"]
+%!          @odeSE, f, Y0, struct("worker_nargout", {2, 2}), ["odeSE" msg "1x2 struct"]};
+%! for i = 1:rows (cases)
+%!   try
+%!     r = cases{i,1} (cases{i,2}, [0 1], cases{i,3},
+%!                     symplecticset (o, "Parallel", cases{i,4}));
+%!     error ("no error");
+%!   catch err
+%!     assert (err.message, cases{i,5});
+%!     assert (err.identifier, "Octave:invalid-input-arg");
+%!   end_try_catch
+%! endfor
+
 %!error <odeSV: OPTS sets both Parallel and parallel>
 %! op = symplecticset (o, "Parallel", 2);  op.parallel = 3;
 %! [t, Y] = odeSV (f, [0 1], Y0, op);
@@ -244,6 +264,78 @@
 %!   assert (! isempty (strfind (out, "ran 11")), out);
 %!   assert (st, 0, sprintf ("exit status %d (137: killed, it did not exit)", st));
 %! endif
+
+%!test
+%! ## A process that dies holding a chunk (FCN calls exit, or the process
+%! ## is killed: SIGKILL, SIGSEGV), in a fresh Octave: the error names the
+%! ## members it held, with the identifier symplectic:parallel-worker;
+%! ## none of the parallel package's lines ("could not receive result")
+%! ## and no "broken pipe" is printed; no process of the package is left
+%! ## (none alive, no zombie: no child of that Octave at all), and the
+%! ## next run starts new ones.  Run 4: the other chunk's process is busy
+%! ## (FCN takes 0.5 s a call, 10 s for the run), the call ends at once.
+%! dirs = {fileparts(which ("odeSV")), fileparts(which ("__odeSV__"))};
+%! script = [tempname() ".m"];
+%! fid = fopen (script, "w");
+%! fputs (fid, strjoin ({
+%!   "pkg load parallel"
+%!   "pid0 = getpid ();"
+%!   "o = symplecticset ('TimeStepSize', 0.1, 'Ensemble', 'on', 'Parallel', 2);"
+%!   "Y0 = [linspace(0.4, 2.9, 7); zeros(1, 7)];"
+%!   "g = @(t, y) [y(2,:); -sin(y(1,:))];"
+%!   "die = {@() feval (@exit, 3), @() kill (getpid (), 9), @() kill (getpid (), 11), @() kill (getpid (), 9)};"
+%!   "for i = 1:4"
+%!   "  slow = (i == 4);"
+%!   "  f = @(t, y) g (t, y) + 0 * (getpid () != pid0 && any (y(1,:) > 2.5) && die{i} ()) + 0 * (slow && getpid () != pid0 && any (abs (y(1,:) - 1.65) < 0.1) && ! pause (0.5));"
+%!   "  t0 = tic ();"
+%!   "  try"
+%!   "    [t, Y] = odeSV (f, [0 2], Y0, o);"
+%!   "    id = ''; msg = 'no error';"
+%!   "  catch err"
+%!   "    id = err.identifier; msg = err.message;"
+%!   "  end_try_catch"
+%!   "  el = toc (t0);"
+%!   "  system ('true');   # Octave reports a pending SIGPIPE here"
+%!   "  kids = [];"
+%!   "  for d = readdir ('/proc')'"
+%!   "    p = str2double (d{1});"
+%!   "    if (isfinite (p))"
+%!   "      try"
+%!   "        st = fileread (sprintf ('/proc/%d/stat', p));"
+%!   "        v = strsplit (strtrim (st(rindex (st, ')')+1:end)), ' ');"
+%!   "        if (str2double (v{2}) == pid0)"
+%!   "          kids(end+1) = p;"
+%!   "        endif"
+%!   "      catch"
+%!   "      end_try_catch"
+%!   "    endif"
+%!   "  endfor"
+%!   "  printf ('RUN %d|%s|%s|%.2f|%s|\\n', i, id, msg, el, num2str (kids));"
+%!   "endfor"
+%!   "[t, Y] = odeSV (g, [0 2], Y0, o);"
+%!   "[t1, Y1] = odeSV (g, [0 2], Y0, symplecticset (o, 'Parallel', 1));"
+%!   "printf ('AFTER %d\\n', isequal (Y, Y1));"
+%!   }, "\n"));
+%! fclose (fid);
+%! unwind_protect
+%!   [~, out] = system (sprintf ("timeout -s KILL 120 \"%s\" --norc --no-gui --quiet --path \"%s\" \"%s\" 2>&1",
+%!                               fullfile (OCTAVE_HOME (), "bin", "octave-cli"),
+%!                               strjoin (dirs, pathsep ()), script));
+%! unwind_protect_cleanup
+%!   unlink (script);
+%! end_unwind_protect
+%! how = {"exited with status 3", "was killed by signal 9 (SIGKILL)", ...
+%!        "was killed by signal 11 (SIGSEGV)", "was killed by signal 9 (SIGKILL)"};
+%! for i = 1:4
+%!   r = regexp (out, sprintf ('RUN %d\\|([^|]*)\\|([^|]*)\\|([^|]*)\\|([^|]*)\\|', i), "tokens", "once");
+%!   assert (numel (r) == 4, "%s", out);
+%!   assert (strcmp (r{1}, "symplectic:parallel-worker"), "%s", out);
+%!   assert (strcmp (r{2}, ["odeSV: Parallel: the process that ran members 5 to 7 " how{i} " before it returned them"]), "%s", out);
+%!   assert (str2double (r{3}) < 8, "run %d took %s s", i, r{3});
+%!   assert (isempty (r{4}), "run %d left children %s", i, r{4});
+%! endfor
+%! assert (! isempty (strfind (out, "AFTER 1")), "%s", out);
+%! assert (isempty (regexp (out, '(^|\n)could not|broken pipe', "once")), "%s", out);
 
 ## ------------------------------------------------------------ servers
 %!test

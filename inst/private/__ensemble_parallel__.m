@@ -18,14 +18,11 @@
 ## this process, to the bit; their printed output (Stats) and warnings are
 ## given here.
 ##
-## The other process calls the same solver with all of @var{y0} and
-## @code{Parallel} a struct (fields @code{worker_nargout},
-## @code{members}): the solver's call of this function there runs the
-## chunk's members through the gateway (its internal option
-## @code{__members__}: FCN is checked at the first member of all, and the
-## members keep their numbers in warnings and in @var{ie}), with what it
-## prints and warns captured, and returns that with the outputs in one
-## struct.
+## The other process runs its chunk through @code{__ensemble_chunk__}
+## (private, by its handle: no option of the solver reaches it), which
+## returns the chunk's outputs, what it printed and warned, and its
+## error, in one struct.  Local processes: @code{__ensemble_local__}
+## (Ctrl-C, a process that dies).
 ## @end deftypefn
 
 function varargout = __ensemble_parallel__ (name, varargin)
@@ -58,11 +55,6 @@ function varargout = __ensemble_parallel__ (name, varargin)
     opts.(names{i}) = [];
   endfor
   args{4} = opts;
-
-  if (isstruct (P) && isscalar (P) && isfield (P, "worker_nargout"))
-    varargout{1} = run_chunk (gateway, P, args);
-    return;
-  endif
 
   remote = isa (P, "pconnections");
   if (! remote && ! (isnumeric (P) && isreal (P) && isscalar (P)
@@ -117,26 +109,15 @@ function varargout = __ensemble_parallel__ (name, varargin)
   first = last - sz + 1;
   jobs = cell (1, nc);
   for c = 1:nc
-    jobs{c} = args;
-    jobs{c}{4}.Parallel = struct ("worker_nargout", nout,
-                                  "members", [first(c), last(c)]);
+    jobs{c} = struct ("gateway", gateway, "nout", nout,
+                      "members", [first(c), last(c)], "args", {args},
+                      "mark", "");
   endfor
 
   if (remote)
     res = run_remote (name, P, servers(1:nc), info(servers(1:nc)), jobs);
   else
-    ## an anonymous function: it reaches the other process as its text,
-    ## and the solver's name resolves there on the path it is given
-    worker = str2func (sprintf ("@(a) %s (a{:})", name));
-    ## the processes it starts must not hold this one's pipes (the
-    ## symbolic package's Python would wait on them, and so Octave's exit)
-    __cloexec__ ();
-    try
-      res = parcellfun (nc, worker, jobs, "UniformOutput", false);
-    catch err
-      error ("%s: Parallel: a process of the parallel package failed: %s",
-             name, err.message);
-    end_try_catch
+    res = __ensemble_local__ (name, nc, jobs, first, last);
   endif
 
   ## a chunk's error is the run's (the first one, by member)
@@ -231,43 +212,13 @@ function need_parallel_package (name)
   endif
 endfunction
 
-## In the other process: the chunk's run, with what it prints and warns
-## (captured: this process's output would not reach the user) and its
-## error, if any, as data.
-function r = run_chunk (gateway, w, args)
-  nout = w.worker_nargout;
-  args{4}.__members__ = w.members;
-  [out, text, err, lw] = run_once (gateway, max (nout, 1), args);
-  if (isempty (err))
-    out = out(1:max (nout, 1));
-  else
-    err = struct ("message", err.message, "identifier", err.identifier);
-    out = {};
-  endif
-  r = struct ("out", {out}, "text", text, "lastwarn", {lw}, "error", err);
-endfunction
-
-function [out, text, err, lw] = run_once (gateway, nout, args)
-  out = cell (1, max (nout, 1));
-  err = [];
-  ## the warnings as their bare lines (the caller warns again)
-  bt = warning ("query", "backtrace");
-  warning ("off", "backtrace");
-  lastwarn ("");
-  unwind_protect
-    text = evalc ("try\n [out{:}] = gateway (args{:});\ncatch err\nend_try_catch");
-  unwind_protect_cleanup
-    warning (bt.state, "backtrace");
-  end_unwind_protect
-  [lmsg, lid] = lastwarn ();
-  lw = {lmsg, lid};
-endfunction
-
 ## The chunks on the servers: each gets its job (after the command that
 ## runs it), then the results come back in order while the others run.
 function res = run_remote (name, conns, idx, info, jobs)
-  ## Run at the server, in its workspace: the solver there (the package
-  ## loaded if it is installed but not loaded), errors returned as data.
+  ## Run at the server, in its workspace: the package loaded if it is
+  ## installed but not loaded, the chunk's runner defined from the text of
+  ## its private file there (private functions cannot be reached from the
+  ## workspace), errors returned as data.
   cmd = sprintf (["__symplectic_job__ = precv (sockets(1));\n", ...
                   "try\n", ...
                   "  if (! exist (\"%s\", \"file\"))\n", ...
@@ -279,7 +230,8 @@ function res = run_remote (name, conns, idx, info, jobs)
                   "  if (! exist (\"%s\", \"file\"))\n", ...
                   "    error (\"%s: Parallel: the server does not find %s; install the symplectic package there, or add it to the server's path (reval)\");\n", ...
                   "  endif\n", ...
-                  "  __symplectic_res__ = %s (__symplectic_job__{:});\n", ...
+                  "  eval (fileread (fullfile (fileparts (which (\"%s\")), \"private\", \"__ensemble_chunk__.m\")));\n", ...
+                  "  __symplectic_res__ = __ensemble_chunk__ (__symplectic_job__);\n", ...
                   "catch __symplectic_err__\n", ...
                   "  __symplectic_res__ = struct (\"error\", struct (\"message\", __symplectic_err__.message, \"identifier\", __symplectic_err__.identifier));\n", ...
                   "end_try_catch\n", ...
@@ -292,6 +244,9 @@ function res = run_remote (name, conns, idx, info, jobs)
   try
     for c = 1:n
       reval (cmd, conns(idx(c)));
+      ## the gateway by its name: it resolves there once the package is
+      ## loaded, after the job has arrived
+      jobs{c}.gateway = func2str (jobs{c}.gateway);
       psend (jobs{c}, conns(idx(c)));
     endfor
     for c = 1:n
