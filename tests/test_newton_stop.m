@@ -25,6 +25,17 @@
 %!        -(p1^2 * q2 + q2 + 0.1 * p1 * p2 * q1)];
 %!endfunction
 
+%!function H = nonsep2_hess (t, y)
+%!  ## the Hessian of nonsep2's H, sparse: odeSE and odeSV solve by KLU
+%!  q1 = y(1); q2 = y(2); p1 = y(3); p2 = y(4);
+%!  a = 0.1 * p2 * q2;  b = 2 * p2 * q1 + 0.1 * p1 * q2;
+%!  c = 2 * p1 * q2 + 0.1 * p2 * q1;  e = 0.1 * p1 * q1;
+%!  H = sparse ([p2^2 + 1, 0.1 * p1 * p2, a, b;
+%!               0.1 * p1 * p2, p1^2 + 1, c, e;
+%!               a, c, 1 + q2^2, 0.1 * q1 * q2;
+%!               b, e, 0.1 * q1 * q2, 1 + q1^2]);
+%!endfunction
+
 ## the largest miss of the steps of (t, y) against each step alone at
 ## NewtonTol 1e-15, relative to max (|y_k|, |y_{k+1} - y_k|)
 %!function w = worst_step (solver, f, t, y)
@@ -38,7 +49,7 @@
 %!endfunction
 
 %!test
-%! ## fixed steps: 200 of h, NewtonTol 1e-8 and 1e-6
+%! ## fixed steps: 100 of h, NewtonTol 1e-8 and 1e-6
 %! solvers = {@odeSE, @odeSV};
 %! fs = {@nonsep, @nonsep2};
 %! y0s = {[0.8; 0.6], [0.8; -0.3; 0.6; 0.9]};
@@ -47,7 +58,7 @@
 %!     for h = [0.1 0.3]
 %!       for ntol = [1e-8 1e-6]
 %!         o = symplecticset ("TimeStepSize", h, "NewtonTol", ntol);
-%!         [t, y] = solvers{si} (fs{fi}, [0, 200*h], y0s{fi}, o);
+%!         [t, y] = solvers{si} (fs{fi}, [0, 100*h], y0s{fi}, o);
 %!         r = worst_step (solvers{si}, fs{fi}, t, y) / (1e-3 * ntol);
 %!         assert (r <= 1.5, sprintf ("%s, f %d, h %g, NewtonTol %g: %.3g",
 %!                 func2str (solvers{si}), fi, h, ntol, r));
@@ -64,6 +75,30 @@
 %! assert (numel (t) > 500);
 %! r = worst_step (@odeSV, @nonsep, t, y) / 1e-8;
 %! assert (r <= 1.5, sprintf ("adaptive odeSV: %.3g", r));
+
+%!test
+%! ## the sparse path (a sparse Hessian: KLU's factors); before, up to
+%! ## 3.8 times
+%! y0 = [0.8; -0.3; 0.6; 0.9];
+%! for ntol = [1e-8 1e-6]
+%!   for solver = {@odeSE, @odeSV}
+%!     o = symplecticset ("TimeStepSize", 0.3, "NewtonTol", ntol,
+%!                        "HamiltonianHessFcn", @nonsep2_hess);
+%!     [t, y] = solver{1} (@nonsep2, [0, 30], y0, o);
+%!     r = worst_step (solver{1}, @nonsep2, t, y) / (1e-3 * ntol);
+%!     assert (r <= 1.5, sprintf ("sparse %s, NewtonTol %g: %.3g",
+%!             func2str (solver{1}), ntol, r));
+%!   endfor
+%! endfor
+
+%!test
+%! ## reversible steps solve as fixed ones do; before, up to 2.1 times
+%! o = symplecticset ("StepControl", "reversible", "RelTol", 1e-2,
+%!                    "NewtonTol", 1e-8, "Refine", 1);
+%! [t, y] = odeSV (@nonsep, [0, 30], [0.8; 0.6], o);
+%! assert (numel (t) > 500);
+%! r = worst_step (@odeSV, @nonsep, t, y) / 1e-11;
+%! assert (r <= 1.5, sprintf ("reversible: %.3g", r));
 
 %!test
 %! ## the test can fail: a NewtonTol 100 times looser than the one the
