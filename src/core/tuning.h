@@ -150,15 +150,15 @@
    errors of the explicit start, extrapolated */
 #define SYM_PRED_MAX 16
 /* odeSE/odeSV: a last correction below this many ulps of the scale
-   needs no check of its residual */
+   needs no check of its result */
 #define SYM_KEPT_ROUNDOFF 4.0
-/* the residual check accepts 4 tol (at least 8 ulps) of the scale, and
-   at most this many solves are made */
-#define SYM_KEPT_RESIDUAL 4.0
-#define SYM_KEPT_RESIDUAL_ULPS 8.0
+/* the check of a solve's result (implicit.c) takes a next correction
+   below this many ulps of the scale as round-off, and at most this many
+   solves are made */
+#define SYM_KEPT_CHECK_ULPS 8.0
 #define SYM_KEPT_ROUNDS 3
-/* a failed residual check showing a rate above this restarts the rate
-   estimate at 1 */
+/* a failed check showing a rate above this restarts the rate estimate
+   at 1 */
 #define SYM_KEPT_RATE_MAX 0.5
 
 /* ------------------------------------------------------------ odeSPVI */

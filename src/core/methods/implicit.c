@@ -188,19 +188,45 @@ sym_kept_built (sym_kept *k, double h)
   k->extra = 0;
 }
 
+/* the iterations of the last solve beyond SYM_NW_BASE, charged to the
+   kept matrix: a new one when they have cost as much as a Jacobian */
+static void
+kept_charge (sym_kept *k, const sym_eval *ev)
+{
+  sym_newton *nw = &k->nw;
+  if (nw->iters > SYM_NW_BASE)
+    {
+      k->extra += nw->iters - SYM_NW_BASE;
+      if (k->extra >= sym_jac_cost (ev))
+        sym_newton_invalidate (nw);
+    }
+}
+
+/* The scale of Newton's test at x: the max norm of ref or of x's
+   distance to it, whichever is larger, into scale[0..d-1].  No scale: 1;
+   a subnormal one: the least normal number, so that the corrections of
+   subnormal data are measured against their quantum. */
+static double
+kept_scale (int d, const double *ref, const double *x, double *scale)
+{
+  double sc = sym_norm_inf (d, ref);
+  for (int i = 0; i < d; i++)
+    sc = fmax (sc, fabs (x[i] - ref[i]));
+  sc = sc > 0.0 ? fmax (sc, DBL_MIN) : 1.0;
+  for (int i = 0; i < d; i++)
+    scale[i] = sc;
+  return sc;
+}
+
 int
 sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
-                sym_eval *ev, double h, int d, double sc, double *x,
-                double *scale, double *rv)
+                sym_eval *ev, double h, int d, const double *ref, double *x,
+                double *scale)
 {
   sym_newton *nw = &k->nw;
   if (nw->have_matrix && fabs (h - k->h_mat) > SYM_REBUILD_H * fabs (k->h_mat))
     sym_newton_invalidate (nw);
-  /* no scale: 1; a subnormal one: the least normal number, so that the
-     corrections of subnormal data are measured against their quantum */
-  sc = sc > 0.0 ? fmax (sc, DBL_MIN) : 1.0;
-  for (int i = 0; i < d; i++)
-    scale[i] = sc;
+  kept_scale (d, ref, x, scale);
   for (int round = 0; round < SYM_KEPT_ROUNDS; round++)
     {
       int st = sym_newton_solve (nw, prob, x, scale, &ev->st.cnt);
@@ -209,27 +235,44 @@ sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
           sym_newton_invalidate (nw);
           return st;
         }
-      if (nw->iters > SYM_NW_BASE)
+      /* The test is relative to the scale of the result, not of the
+         start (a far start would loosen it).  The last correction in
+         that scale; the cache holds f at the iterate before it, a
+         round-off step away when it is below ROUNDOFF */
+      const double sc = kept_scale (d, ref, x, scale);
+      const double last = sym_norm_inf (d, nw->dx) / sc;
+      if (last <= SYM_KEPT_ROUNDOFF * DBL_EPSILON)
         {
-          k->extra += nw->iters - SYM_NW_BASE;
-          if (k->extra >= sym_jac_cost (ev))
-            sym_newton_invalidate (nw);
+          kept_charge (k, ev);
+          return SYM_SUCCESS;
         }
-      /* the cache holds f at the previous iterate, a round-off step away */
-      if (sym_norm_inf (d, nw->dx) <= SYM_KEPT_ROUNDOFF * DBL_EPSILON * sc)
+      /* The next correction with the same matrix (it leaves f at x in
+         the cache) shows the rate th, and the error of x, |dx| / (1 -
+         th), is newton.c's estimate with that rate: x is taken only when
+         it is below tol (round-off: SYM_KEPT_CHECK_ULPS) */
+      double dn;
+      if ((st = sym_newton_dx (nw, prob, x, scale, &ev->st.cnt, &dn)))
+        {
+          sym_newton_invalidate (nw);
+          return st;
+        }
+      const double th = dn / fmax (last, DBL_MIN);
+      kept_charge (k, ev);
+      if (dn <= SYM_KEPT_CHECK_ULPS * DBL_EPSILON
+          || (th < 1.0 && dn <= (1.0 - th) * nw->tol))
         return SYM_SUCCESS;
-      if ((st = prob->residual (prob->ctx, x, rv)))
-        return st;
-      double rn = sym_norm_inf (d, rv);
-      if (rn <= fmax (SYM_KEPT_RESIDUAL * nw->tol,
-                      SYM_KEPT_RESIDUAL_ULPS * DBL_EPSILON) * sc)
-        return SYM_SUCCESS;
-      /* the residual is about the next correction: the rate it shows
+      if (! isfinite (dn))
+        break;
+      /* not converged: the correction is taken, and the rate it shows
          replaces the one newton.c trusted */
-      double th = rn / fmax (sym_norm_inf (d, nw->dx), DBL_MIN);
+      sym_newton_apply (nw, x, &ev->st.cnt);
       nw->eta = th < SYM_KEPT_RATE_MAX ? th / (1.0 - th) : 1.0;
     }
-  return SYM_SUCCESS;   /* every solve claimed convergence: take it */
+  /* no solve reached tol: a failure (the caller tries another start, a
+     smaller step, or ends the run), not an unconverged result */
+  ev->st.cnt.nnewton_fail++;
+  sym_newton_invalidate (nw);
+  return SYM_NEWTON_FAIL;
 }
 
 int
@@ -355,7 +398,7 @@ int
 sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
                 sym_eval *ev, double h, sym_pred *pr, int cont, double c,
                 int kind, const double *base, const double *ref, double *x,
-                double *scale, double *rv)
+                double *scale)
 {
   const int d = pr->d;
   int st = SYM_NEWTON_FAIL, tried = 0;
@@ -370,10 +413,7 @@ sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
           ev->st.cnt.nrestart += tried;
           memcpy (x, base, (size_t) d * sizeof (double));
         }
-      double sc = sym_norm_inf (d, ref);
-      for (int i = 0; i < d; i++)
-        sc = fmax (sc, fabs (x[i] - ref[i]));
-      st = sym_kept_solve (k, prob, ev, h, d, sc, x, scale, rv);
+      st = sym_kept_solve (k, prob, ev, h, d, ref, x, scale);
       tried = 1;
     }
   if (! st)
@@ -383,7 +423,7 @@ sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
 
 int
 sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
-                const double *prev, double *x, double *scale, double *rv)
+                const double *prev, double *x, double *scale)
 {
   const int d = kk->d;
   const double *p0 = r->trial->y0 + d;
@@ -403,7 +443,7 @@ sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
       kind = kick_explicit (kk, r, cont, prev, xb);
     }
   int st = sym_pred_solve (kk->k, &prob, kk->ev, kk->h, kk->pr, cont,
-                           kk->c, kind, xb, p0, x, scale, rv);
+                           kk->c, kind, xb, p0, x, scale);
   /* f at [q_k; P] (moved there if the solve stopped on a round-off
      correction) */
   if (! st)

@@ -166,30 +166,31 @@ int sym_kept_factor (sym_kept *k, const sym_fcache *fc, int r0, double c,
 void sym_kept_adaptive (sym_kept *k);
 /* to be called by a matrix callback that has built a matrix for h */
 void sym_kept_built (sym_kept *k, double h);
-/* Solve for x (d unknowns, scale sc) with the kept matrix for step h: a
-   new matrix when h changed by more than SYM_REBUILD_H or the extra
-   iterations have cost as much as a new Jacobian.  newton.c may stop
-   after one iteration, judging by an earlier solve's rate; the residual
-   at the solution (which leaves f there in the cache the residual uses)
-   checks that, and a failed check iterates on with the rate it shows
-   (SYM_KEPT_ROUNDS solves at most).  A last correction at round-off
-   level needs no check.  rv, scale: d of work. */
+/* Solve for x (d unknowns) with the kept matrix for step h: a new
+   matrix when h changed by more than SYM_REBUILD_H or the extra
+   iterations have cost as much as a new Jacobian.  The scale of the test
+   is the max norm of ref (the unknown's value at the step's start) or of
+   x's distance to it, whichever is larger: at the start for newton.c,
+   at the result for the check.  newton.c may stop after one iteration,
+   judging by an earlier solve's rate; one more correction from x with
+   the same matrix (which leaves f at x in the cache) checks that by
+   newton.c's own estimate with the rate it shows, and a failed check
+   takes that correction and iterates on (SYM_KEPT_ROUNDS solves at most,
+   then SYM_NEWTON_FAIL).  A last correction at round-off level needs no
+   check.  scale: d of work. */
 int sym_kept_solve (sym_kept *k, const sym_newton_problem *prob,
-                    sym_eval *ev, double h, int d, double sc, double *x,
-                    double *scale, double *rv);
+                    sym_eval *ev, double h, int d, const double *ref,
+                    double *x, double *scale);
 /* sym_kept_solve for the unknown of the history pr at offset c from the
    start of the trial step (of size h), from sym_pred_start's start when
    the trial continues the last accepted step (cont) and the history
    serves, else from base (kind: as for sym_pred_note); again from base
    after a recoverable failure from the history's start (counted in
-   nrestart).  The scale is the max norm of ref (the unknown's value at
-   the step's start) or of the start's distance to it, whichever is
-   larger.  On success x is noted in the history. */
+   nrestart).  On success x is noted in the history. */
 int sym_pred_solve (sym_kept *k, const sym_newton_problem *prob,
                     sym_eval *ev, double h, sym_pred *pr, int cont,
                     double c, int kind, const double *base,
-                    const double *ref, double *x, double *scale,
-                    double *rv);
+                    const double *ref, double *x, double *scale);
 
 /* The implicit kick P = p_k + c f_p(t_k, q_k, P) of symplectic Euler
    (c = h) and of Stormer-Verlet's first half kick (c = h/2):
@@ -205,7 +206,7 @@ typedef struct {
   sym_pred *pr;           /* the history of P (at t_k + c) */
 } sym_kick;
 
-/* Solve the kick of the trial step of r into x (d), with scale, rv: d of
+/* Solve the kick of the trial step of r into x (d), with scale: d of
    work, by sym_pred_solve with the history kk->pr.  The base (the
    explicit start): P0 = p_k + c f_p(t_k, y_k) when f(t_k, y_k) is known,
    else p_k + (p_k - prev) h / h_prev from the last accepted step when it
@@ -215,8 +216,7 @@ typedef struct {
    increment and p_k both vanish.  On success the cache holds f at
    [q_k; P] (sym_fcache_move). */
 int sym_kick_solve (const sym_kick *kk, sym_recs *r, int cont,
-                    const double *prev, double *x, double *scale,
-                    double *rv);
+                    const double *prev, double *x, double *scale);
 
 /* ---------------------------------------------------------------- state */
 /* The head of the SE and SV states (their first member): what their

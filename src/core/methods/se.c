@@ -15,9 +15,10 @@
    The implicit kick is sym_kick_solve (implicit.c, shared with
    Stormer-Verlet's half kick): simplified Newton on the d unknowns P,
      G(P) = P - p_k - h f_p(t_k, q_k, P),   G'(P) ~ I - h A_pp,
-   started from the history of P over an explicit start, stopped at
-   NewtonTol relative to max(|p_k|, |P0 - p_k|) (SYM_FIXED_TOL_KEPT of it
-   on fixed steps), with its matrix kept across steps while it pays.
+   started from the history of P over an explicit start, stopped when
+   its error is estimated below NewtonTol relative to max(|p_k|, |P -
+   p_k|) at the result P (SYM_FIXED_TOL_KEPT of it on fixed steps), with
+   its matrix kept across steps while it pays.
    q_{k+1} needs f_q at the final P: the solve leaves it in the f cache.
 
    Separable H = T(p) + V(q): f_p does not depend on p and f_q not on q,
@@ -41,21 +42,20 @@
 
 typedef struct {
   sym_onestep o;         /* first: accept and dense (onestep.h) */
-  double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
+  double *x, *scale;     /* d: Newton unknown, its scale */
 } se_state;
 
 static void *
 se_alloc (int dim, const sym_method_opts *opts, int *status)
 {
-  /* own: x, scale, rv (d each); one implicit unknown */
+  /* own: x, scale (d each); one implicit unknown */
   double *w;
   se_state *s = sym_onestep_alloc (dim, 1, sizeof (se_state), 1, 0,
-                                   3 * (size_t) dim, opts, status, &w);
+                                   2 * (size_t) dim, opts, status, &w);
   if (! s)
     return NULL;
   s->x = w;
   s->scale = w + dim;
-  s->rv = w + 2 * dim;
   return s;
 }
 
@@ -94,7 +94,7 @@ se_step (void *state, sym_eval *ev, double t, double h, double tend,
       sym_kick kick = { d, &s->o.fc, &s->o.k[0], ev, t, h, h, v.tr->y0,
                         &s->o.pr[0] };
       if ((st = sym_kick_solve (&kick, &s->o.r, v.cont, v.cu->y0 + d, s->x,
-                                s->scale, s->rv)))
+                                s->scale)))
         return st;
       /* the cache holds f at [q_k; P] */
       memcpy (v.p1, s->x, (size_t) d * sizeof (double));

@@ -65,7 +65,7 @@
 
 typedef struct {
   sym_onestep o;         /* first: accept and dense (onestep.h) */
-  double *x, *scale, *rv;/* d: Newton unknown, its scale, a residual */
+  double *x, *scale;     /* d: Newton unknown, its scale */
   double *fqa;           /* d: f_q(t_k, q_k, p_{k+1/2}) */
   double *ym;            /* n: the estimate's midpoint at a fresh start */
   int position;          /* drift-kick-drift (explicit steps only) */
@@ -139,18 +139,17 @@ sv_alloc (int dim, const sym_method_opts *opts, int *status)
       *status = SYM_EBADINPUT;
       return NULL;
     }
-  /* records with aux (2d); own: x, scale, rv, fqa (d each), ym (n); two
+  /* records with aux (2d); own: x, scale, fqa (d each), ym (n); two
      implicit unknowns */
   double *w;
   sv_state *s = sym_onestep_alloc (dim, 2, sizeof (sv_state), 2, 2 * dim,
-                                   6 * (size_t) dim, opts, status, &w);
+                                   5 * (size_t) dim, opts, status, &w);
   if (! s)
     return NULL;
   const int d = dim;
   s->position = own && own->position;
   s->x = w; w += d;
   s->scale = w; w += d;
-  s->rv = w; w += d;
   s->fqa = w; w += d;
   s->ym = w;
   return s;
@@ -321,8 +320,8 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
          kick (sym_kick_solve) */
       sym_kick kick = { d, &s->o.fc, &s->o.k[0], ev, t, h, hh, v.tr->y0,
                         &s->o.pr[0] };
-      if ((st = sym_kick_solve (&kick, &s->o.r, v.cont, PH (v.cu), x, s->scale,
-                                s->rv)))
+      if ((st = sym_kick_solve (&kick, &s->o.r, v.cont, PH (v.cu), x,
+                                s->scale)))
         return st;
       /* the cache holds f at [q_k; P] */
       memcpy (ph, x, (size_t) d * sizeof (double));
@@ -338,7 +337,7 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
       for (int i = 0; i < d; i++)
         base[i] = v.q0[i] + h * s->fqa[i];
       st = sym_pred_solve (&s->o.k[1], &pq, ev, h, &s->o.pr[1], v.cont, h, 1,
-                           base, v.q0, x, s->scale, s->rv);
+                           base, v.q0, x, s->scale);
       if (st)
         return st;
       sym_fcache_move (&s->o.fc, s->tk + s->hk, x, ph);
