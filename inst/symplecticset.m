@@ -83,6 +83,12 @@
 ## members integrated together; the number of local processes to split
 ## them across, or the connections @code{pconnect} returned (package
 ## @code{parallel}).  Default @qcode{"off"}, 1.
+## @item TangentMap
+## @code{odeSE}, @code{odeSV} with explicit fixed steps: @qcode{"on"}
+## returns the derivative of the discrete map, Phi = dy_k/dy_0, at each
+## step point in @code{sol.phi} (2d-by-2d-by-numel (sol.x)); a 2d-by-k
+## matrix V0 returns Phi*V0 (2d-by-k-by-numel (sol.x)).  Default
+## @qcode{"off"}; @code{help odeSV} for the rest.
 ## @end table
 ##
 ## A name that neither @code{odeset} nor this package knows gets a
@@ -114,7 +120,8 @@ function opts = symplecticset (varargin)
                        "VerletForm", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
                        "NewtonSystem", "NonlinearSolver", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
-                       "StepDensityFcn", "Ensemble", "Parallel"};
+                       "StepDensityFcn", "Ensemble", "Parallel", ...
+                       "TangentMap"};
   persistent odeset_fields = fieldnames (odeset ());
 
   if (nargin == 0 && nargout == 0)
@@ -143,6 +150,7 @@ function opts = symplecticset (varargin)
     printf ("     StepDensityFcn:  function handle, []\n");
     printf ("           Ensemble:  {[\"off\"], \"on\"}\n");
     printf ("           Parallel:  integer, >0, [1]; or pconnect's connections\n");
+    printf ("         TangentMap:  {[\"off\"], \"on\"}, or a 2d-by-k matrix\n");
     return;
   endif
 

@@ -370,6 +370,7 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   o->densityfcn = function_opt (solver, opts, "StepDensityFcn");
   o->ensemble = (v = symmex_field (solver, opts, "Ensemble"))
                 ? symmex_on_off (solver, v, "Ensemble") : 0;
+  o->tangent = field_as_given (solver, opts, "TangentMap");
   parse_steps (solver, opts, o);
 
   /* odeset fields that would change the problem solved: not taken (a
@@ -482,7 +483,8 @@ static const char *const odeset_names[] = {
 static const char *const common_names[] = {
   "TimeStepSize", "TimeStepNumber", "HamiltonianHessFcn", "NewtonTol",
   "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", "StepControl",
-  "StepDensityFcn", "Ensemble", "Parallel", "__members__", NULL
+  "StepDensityFcn", "Ensemble", "Parallel", "TangentMap", "__members__",
+  NULL
 };
 
 /* The edit distance of a and b, without regard to case */

@@ -25,6 +25,16 @@ sym_onestep_new (int dim, int order, size_t size,
       return NULL;
     }
   const sym_onestep_opts *own = opts ? opts->own : NULL;
+  /* the tangent map of explicit steps only */
+  if (own && own->tangent
+      && ((! own->separable && ! own->second_order)
+          || ! sym_tangent_fits (own->tangent, dim)))
+    {
+      sym_free (o);
+      *status = SYM_EBADINPUT;
+      return NULL;
+    }
+  o->tg = own ? own->tangent : NULL;
   o->d = dim;
   o->n = 2 * dim;
   o->order = order;
@@ -191,6 +201,8 @@ sym_onestep_accept (void *state)
   if (o->r.trial_ok)
     for (int k = 0; k < o->npr; k++)
       sym_pred_commit (&o->pr[k]);
+  if (o->r.trial_ok && o->tg)
+    sym_tangent_accept (o->tg);
   recs_accept (&o->r);
 }
 
@@ -341,6 +353,8 @@ sym_onestep_begin (sym_onestep *o, const sym_eval *ev, double t, double h,
       || ! isfinite (tend) || h == 0.0)
     return SYM_EBADINPUT;
   *cont = sym_recs_begin (&o->r, t, h, tend, y);
+  if (o->tg)
+    sym_tangent_begin (o->tg);
   return SYM_SUCCESS;
 }
 
@@ -378,6 +392,10 @@ sym_onestep_set_tolerances (void *state, const sym_tolerances *tol)
 {
   sym_onestep *o = state;
   (void) tol;
+  /* the tangent map is of fixed steps (an adaptive run's rejected
+     trials and the step size's dependence on y are not carried) */
+  if (o->tg)
+    return SYM_EBADINPUT;
   o->want_f = 1;
   for (int k = 0; k < o->npr; k++)
     sym_kept_adaptive (&o->k[k]);

@@ -12,6 +12,7 @@
 
 #include "../sym.h"
 #include "../numerics/numerics.h"
+#include "tangent.h"
 
 /* ---------------------------------------------------------------- records */
 /* One step: its start, end, the f values known at its two ends, and the
@@ -235,6 +236,7 @@ typedef struct {
   int want_f;            /* f at both ends of every step (estimate,
                             dense output) */
   int sparse;            /* implicit with a sparse Df */
+  sym_tangent *tg;       /* the tangent map the steps carry, or NULL */
 } sym_onestep;
 
 /* o's f cache placed at w, with a dense Df when implicit and not sparse,

@@ -75,6 +75,12 @@ se_step (void *state, sym_eval *ev, double t, double h, double tend,
         return st;
       for (int i = 0; i < d; i++)
         v.p1[i] = v.p0[i] + h * v.tr->f0[d + i];
+      sym_tangent *tg = s->o.tg;
+      if (tg && (st = sym_tangent_kick (tg, ev, t, v.q0, v.p0, h)))
+        return st;
+      if (tg && (st = sym_tangent_drift (tg, ev, t, v.q0, v.p1, h,
+                                         s->o.second_order)))
+        return st;
       if (s->o.second_order)
         {
           for (int i = 0; i < d; i++)

@@ -275,6 +275,11 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
               memcpy (fp, s->o.fc.fw + d, (size_t) d * sizeof (double));
               fp_ok = 1;
             }
+          if (s->o.tg
+              && (st = sym_tangent_kick (s->o.tg, ev, sp_time (t, h, tr->tend,
+                                                               s->ca[k]),
+                                         q, p, bh)))
+            return st;
           for (int i = 0; i < d; i++)
             if (comp)
               comp_add (&p[i], &c[d + i], bh * fp[i]);
@@ -293,6 +298,11 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
               memcpy (fq, s->o.fc.fw, (size_t) d * sizeof (double));
               fq_ok = 1;
             }
+          if (s->o.tg
+              && (st = sym_tangent_drift (s->o.tg, ev,
+                                          sp_time (t, h, tr->tend, s->cb[k]),
+                                          q, p, ah, so)))
+            return st;
           for (int i = 0; i < d; i++)
             if (comp)
               comp_add (&q[i], &c[i], ah * fq[i]);

@@ -234,6 +234,10 @@ sv_position (sv_state *s, sym_eval *ev, const sym_trial *v)
     }
   for (int i = 0; i < d; i++)
     qh[i] = v->q0[i] + hh * fq[i];
+  sym_tangent *tg = s->o.tg;
+  if (tg && ((st = sym_tangent_drift (tg, ev, t, v->q0, v->p0, hh, so))
+             || (st = sym_tangent_kick (tg, ev, t + hh, qh, v->p0, h))))
+    return st;
   if ((st = sym_fcache_f (&s->o.fc, ev, t + hh, qh, v->p0)))  /* B */
     return st;
   /* f_q at p_k with q_k (or q_{k-1/2}) and with q_{k+1/2}: the same if H
@@ -242,6 +246,9 @@ sv_position (sv_state *s, sym_eval *ev, const sym_trial *v)
     sym_sep_check (ev, t, d, s->fqa, s->o.fc.fw);
   for (int i = 0; i < d; i++)
     v->p1[i] = v->p0[i] + h * s->o.fc.fw[d + i];
+  if (tg && (st = sym_tangent_drift (tg, ev, v->tr->tend, qh, v->p1, hh,
+                                     so)))
+    return st;
   if (so)
     {
       for (int i = 0; i < d; i++)
@@ -294,6 +301,11 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
         }
       for (int i = 0; i < d; i++)
         ph[i] = v.p0[i] + hh * fp[i];
+      if (s->o.tg
+          && ((st = sym_tangent_kick (s->o.tg, ev, t, v.q0, v.p0, hh))
+              || (st = sym_tangent_drift (s->o.tg, ev, t + hh, v.q0, ph, h,
+                                          s->o.second_order))))
+        return st;
       if (s->o.second_order)
         for (int i = 0; i < d; i++)
           v.q1[i] = v.q0[i] + h * ph[i];
@@ -344,6 +356,9 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
       sym_fcache_move (&s->o.fc, s->tk + s->hk, x, ph);
       memcpy (v.q1, x, (size_t) d * sizeof (double));
     }
+  if (s->o.tg
+      && (st = sym_tangent_kick (s->o.tg, ev, v.tr->tend, v.q1, ph, hh)))
+    return st;
   /* (3): the cache holds f at [q_{k+1}; p_{k+1/2}] on both paths */
   for (int i = 0; i < d; i++)
     {
