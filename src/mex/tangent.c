@@ -106,6 +106,9 @@ symmex_tangent_attach (symmex_ctx *c, sym_tangent *tg)
   t->tg = tg;
   t->len = (size_t) c->n * (size_t) sym_tangent_columns (tg);
   c->tangent = t;
+  /* (the stats name the source of the tangent's blocks) */
+  if (c->jac_source == JAC_NONE)
+    c->jac_source = JAC_FD;
 }
 
 void
