@@ -81,7 +81,8 @@ int
 main (void)
 {
   sym_set_allocator (drv_counting_alloc, drv_counting_free);
-  sym_onestep_opts sep = { 1, 0, 0, 0, 0, 0 }, impl = { 0, 0, 0, 0, 0, 0 };
+  sym_onestep_opts sep = { 1, 0, 0, 0, 0, 0, NULL },
+                   impl = { 0, 0, 0, 0, 0, 0, NULL };
   sym_spvi_opts sp = { 0, 0, SYM_MATRIX_AUTO, SYM_SYSTEM_AUTO, 0,
                         SYM_NONLINEAR_NEWTON };
   /* the splitting stepper: fixed steps of yoshida4, explicit (with

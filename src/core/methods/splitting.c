@@ -85,7 +85,7 @@ sp_inner (sp_state *s, const sym_method_opts *opts)
     io = *opts;
   else
     memset (&io, 0, sizeof io);
-  static const sym_onestep_opts implicit = { 0, 0, 0, 0, 0, 0 };
+  static const sym_onestep_opts implicit = { 0, 0, 0, 0, 0, 0, NULL };
   io.own = &implicit;
   io.want_dense = 0;
   s->inner = sym_calloc ((size_t) k, sizeof (void *));
