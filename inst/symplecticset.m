@@ -89,6 +89,10 @@
 ## step point in @code{sol.phi} (2d-by-2d-by-numel (sol.x)); a 2d-by-k
 ## matrix V0 returns Phi*V0 (2d-by-k-by-numel (sol.x)).  Default
 ## @qcode{"off"}; @code{help odeSV} for the rest.
+## @item Indicators
+## @qcode{"lyapunov"}, with @code{TangentMap} a 2d-by-1 deviation
+## vector: the estimate of the maximal Lyapunov exponent at each step
+## point in @code{sol.lyapunov}.  Default @qcode{"none"}.
 ## @end table
 ##
 ## A name that neither @code{odeset} nor this package knows gets a
@@ -121,7 +125,7 @@ function opts = symplecticset (varargin)
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
                        "NewtonSystem", "NonlinearSolver", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
                        "StepDensityFcn", "Ensemble", "Parallel", ...
-                       "TangentMap"};
+                       "TangentMap", "Indicators"};
   persistent odeset_fields = fieldnames (odeset ());
 
   if (nargin == 0 && nargout == 0)
@@ -151,6 +155,7 @@ function opts = symplecticset (varargin)
     printf ("           Ensemble:  {[\"off\"], \"on\"}\n");
     printf ("           Parallel:  integer, >0, [1]; or pconnect's connections\n");
     printf ("         TangentMap:  {[\"off\"], \"on\"}, or a 2d-by-k matrix\n");
+    printf ("         Indicators:  {[\"none\"], \"lyapunov\"}\n");
     return;
   endif
 

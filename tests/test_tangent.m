@@ -214,6 +214,62 @@
 %! assert (! isfield (s1, "phi"));
 %! assert (s2.y, s1.y);
 
+## ------------------------------------------------------------ Lyapunov
+%!test
+%! ## the oscillator: |Phi v0| stays bounded, the exponent goes to 0 as 1/t
+%! f = @(t, y) [y(2); -y(1)];  h = 0.1;  N = 1e4;
+%! sol = odeSV (f, [0, N*h], [1; 0], symplecticset ("TimeStepSize", h,
+%!              "TimeStepNumber", N, "Separable", "on", "TangentMap", [0; 1],
+%!              "Indicators", "lyapunov"));
+%! assert (size (sol.lyapunov), size (sol.x));
+%! assert (isnan (sol.lyapunov(1)));
+%! assert (abs (sol.lyapunov(end)) < 2e-3);
+%! assert (abs (sol.lyapunov(1001)) < 2e-2);
+%! ## sol.phi holds the renormalised vector
+%! assert (norm (sol.phi(:,1,end)), 1, 1e-14);
+%! ## the log growth against |Phi v0| of a run without renormalisation
+%! s2 = odeSV (f, [0, N*h], [1; 0], symplecticset ("TimeStepSize", h,
+%!             "TimeStepNumber", N, "Separable", "on", "TangentMap", [0; 1]));
+%! for k = [2, 17, 1001, N+1]
+%!   lg = log (norm (s2.phi(:,1,k))) / sol.x(k);
+%!   assert (sol.lyapunov(k), lg, 1e-12 + 1e-12 * abs (lg));
+%!   assert (sol.phi(:,1,k), s2.phi(:,1,k) / norm (s2.phi(:,1,k)), 1e-13);
+%! endfor
+
+%!test
+%! ## Henon-Heiles at E = 1/6, a chaotic orbit: the exponent positive, and
+%! ## equal to the estimate from central differences of the package's own
+%! ## map along the same orbit (pairs of states +-dl w about sol.y every Tr,
+%! ## w renormalised there: an ensemble run of two members)
+%! a = @(t, q) [-q(1) - 2*q(1)*q(2); -q(2) - q(1)^2 + q(2)^2];
+%! av = @(t, q) [-q(1,:) - 2*q(1,:).*q(2,:); -q(2,:) - q(1,:).^2 + q(2,:).^2];
+%! hs = @(t, y) [1 + 2*y(2), 2*y(1), 0, 0; 2*y(1), 1 - 2*y(2), 0, 0;
+%!               0, 0, 1, 0; 0, 0, 0, 1];
+%! E = 1/6;  yv = -0.1;  y0 = [0; yv; sqrt(2*(E - yv^2/2 + yv^3/3)); 0];
+%! h = 0.05;  T = 500;  N = T/h;  v0 = [1; 0; 0; 0];
+%! o = symplecticset ("TimeStepSize", h, "TimeStepNumber", N,
+%!                    "SecondOrder", "on", "TangentMap", v0,
+%!                    "Indicators", {"lyapunov"}, "HamiltonianHessFcn", hs);
+%! sol = odeSV (a, [0, T], y0, o);
+%! Tr = 2;  m = round (Tr/h);  dl = 1e-6;
+%! oe = symplecticset ("TimeStepSize", h, "TimeStepNumber", m,
+%!                     "SecondOrder", "on", "Ensemble", "on",
+%!                     "Vectorized", "on");
+%! S = 0;  w = v0;
+%! for k = 1:round (T/Tr)
+%!   c = sol.y(:,(k-1)*m+1);
+%!   s = odeSV (av, [0, Tr], [c + dl*w, c - dl*w], oe);
+%!   w = (s(1).y(:,end) - s(2).y(:,end)) / (2*dl);
+%!   S += log (norm (w));
+%!   w /= norm (w);
+%! endfor
+%! assert (sol.lyapunov(end) > 0.05);
+%! assert (sol.lyapunov(end), S / T, 1e-6 * S / T);
+%! assert (sol.phi(:,1,end), w, 1e-6);
+%! ## the Hessian by differences gives the same
+%! s2 = odeSV (a, [0, T], y0, symplecticset (o, "HamiltonianHessFcn", []));
+%! assert (s2.lyapunov(end), sol.lyapunov(end), 1e-6 * sol.lyapunov(end));
+
 ## ------------------------------------------------------------ errors
 %!shared f, of
 %! f = @(t, y) [y(2); -y(1)];
@@ -235,3 +291,15 @@
 %!error <odeSV: TangentMap's deviation vectors must be finite, got NaN in element 2> odeSV (f, [0 1], [1; 0], symplecticset (of, "TangentMap", [1; NaN]));
 %!error <odeSV: TangentMap needs explicit steps> odeSV (f, [0 1], [1; 0], symplecticset (of, "Separable", "off", "Method", "yoshida4"));
 %!error id=Octave:invalid-input-arg odeSV (f, [0 1], [1; 0], symplecticset (of, "TangentMap", {1}));
+%!error <odeSV: Indicators "lyapunov" needs TangentMap, a 2-by-1 deviation vector to follow> s = odeSV (f, [0 1], [1; 0], symplecticset ("TimeStepSize", 0.1, "Separable", "on", "Indicators", "lyapunov"));
+%!error <odeSV: Indicators "lyapunov" needs TangentMap, .*TangentMap is off> s = odeSV (f, [0 1], [1; 0], symplecticset (of, "TangentMap", "off", "Indicators", "lyapunov"));
+%!error <odeSE: Indicators "lyapunov" follows one deviation vector: give TangentMap as a 2-by-1 vector, got 2-by-2> s = odeSE (f, [0 1], [1; 0], symplecticset (of, "Indicators", "lyapunov"));
+%!error <odeSV: Indicators must be "lyapunov" or "none", got "megno"> s = odeSV (f, [0 1], [1; 0], symplecticset (of, "TangentMap", [1; 0], "Indicators", "megno"));
+%!error <odeSV: Indicators must be "lyapunov" or a cell of such names, got an element 1x1 double> s = odeSV (f, [0 1], [1; 0], symplecticset (of, "TangentMap", [1; 0], "Indicators", {"lyapunov", 1}));
+%!error <odeSPVI: Indicators "lyapunov" needs TangentMap> s = odeSPVI (f, [0 1], [1; 0], symplecticset ("Indicators", "lyapunov"));
+%!test
+%! ## "none" and {} ask for nothing
+%! s = odeSV (f, [0 1], [1; 0], symplecticset (of, "TangentMap", [1; 0], "Indicators", "none"));
+%! assert (! isfield (s, "lyapunov"));
+%! s = odeSV (f, [0 1], [1; 0], symplecticset (of, "Indicators", {}));
+%! assert (! isfield (s, "lyapunov"));

@@ -437,6 +437,12 @@ void sym_tangent_free (sym_tangent *tg);     /* NULL is fine */
 /* Phi at the end of the last accepted step (v0 before the first) */
 const double *sym_tangent_phi (const sym_tangent *tg);
 int sym_tangent_columns (const sym_tangent *tg);
+/* the maximal Lyapunov exponent's renormalisation (one column only,
+   else SYM_EBADINPUT): after every accepted step the column is scaled
+   to unit norm and the log of its norm added up (what
+   sym_tangent_log_growth returns), so that it never overflows */
+int sym_tangent_renormalise (sym_tangent *tg);
+double sym_tangent_log_growth (const sym_tangent *tg);
 
 /* ---------------------------------------------------------------- driver */
 /* Events: value[k] for k < nevents; isterminal/direction as in Octave.

@@ -371,6 +371,7 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   o->ensemble = (v = symmex_field (solver, opts, "Ensemble"))
                 ? symmex_on_off (solver, v, "Ensemble") : 0;
   o->tangent = field_as_given (solver, opts, "TangentMap");
+  o->indicators = field_as_given (solver, opts, "Indicators");
   parse_steps (solver, opts, o);
 
   /* odeset fields that would change the problem solved: not taken (a
@@ -483,8 +484,8 @@ static const char *const odeset_names[] = {
 static const char *const common_names[] = {
   "TimeStepSize", "TimeStepNumber", "HamiltonianHessFcn", "NewtonTol",
   "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", "StepControl",
-  "StepDensityFcn", "Ensemble", "Parallel", "TangentMap", "__members__",
-  NULL
+  "StepDensityFcn", "Ensemble", "Parallel", "TangentMap", "Indicators",
+  "__members__", NULL
 };
 
 /* The edit distance of a and b, without regard to case */

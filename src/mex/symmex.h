@@ -137,6 +137,7 @@ typedef struct symmex_opts_s {
   const mxArray *densityfcn;  /* StepDensityFcn, or NULL */
   int ensemble;               /* Ensemble: the columns of Y0 are members */
   const mxArray *tangent;     /* TangentMap as given, or NULL */
+  const mxArray *indicators;  /* Indicators as given, or NULL */
 } symmex_opts;
 
 /* Parse OPTS (an odeset struct, a plain struct, or []) for a problem of

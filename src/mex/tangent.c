@@ -16,8 +16,35 @@ typedef struct symmex_tangent_s {
   const sym_tangent *tg;
   size_t len;          /* n * m */
   double *buf;         /* Phi at the rows kept */
+  int lyap;            /* Indicators "lyapunov" */
+  double *lbuf;        /* and the log growth at the rows */
   size_t rows, cap;
 } symmex_tangent;
+
+/* Indicators: "lyapunov" (a word or a cell of words), or none ({},
+   "none"); whether the exponent is asked for */
+static int
+indicators (const char *name, const mxArray *v)
+{
+  static const char *const words[] = { "lyapunov", "none", NULL };
+  if (! v)
+    return 0;
+  if (! mxIsCell (v))
+    return symmex_word (name, v, "Indicators", words) == 0;
+  int lyap = 0;
+  for (size_t k = 0; k < mxGetNumberOfElements (v); k++)
+    {
+      const mxArray *e = mxGetCell (v, k);
+      char buf[64];
+      if (! e || ! mxIsChar (e))
+        mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Indicators must be "
+                           "\"lyapunov\" or a cell of such names, got an "
+                           "element %s", name,
+                           e ? symmex_describe (e, buf, sizeof buf) : "[]");
+      lyap |= symmex_word (name, e, "Indicators", words) == 0;
+    }
+  return lyap;
+}
 
 static void
 refuse (const char *solver, const char *why)
@@ -33,6 +60,11 @@ symmex_tangent_setup (const symmex_method *m, void *own,
   const char *name = m->name;
   const int n = a->n;
   char buf[64];
+  const int lyap = indicators (name, o->indicators);
+  if (lyap && ! v)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Indicators \"lyapunov\" needs "
+                       "TangentMap, a %d-by-1 deviation vector to follow",
+                       name, n);
   if (! v)
     return NULL;
   const double *v0 = NULL;
@@ -41,7 +73,14 @@ symmex_tangent_setup (const symmex_method *m, void *own,
       || (mxIsNumeric (v) && mxGetNumberOfElements (v) == 1 && n > 1))
     {
       if (! symmex_on_off (name, v, "TangentMap"))
-        return NULL;
+        {
+          if (lyap)
+            mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Indicators \"lyapunov\" "
+                               "needs TangentMap, a %d-by-1 deviation "
+                               "vector to follow; TangentMap is off", name,
+                               n);
+          return NULL;
+        }
     }
   else
     {
@@ -60,6 +99,10 @@ symmex_tangent_setup (const symmex_method *m, void *own,
                              name, SYMMEX_NUM (v0[i], "%g"), i + 1);
       cols = (int) mxGetN (v);
     }
+  if (lyap && cols != 1)
+    mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Indicators \"lyapunov\" follows "
+                       "one deviation vector: give TangentMap as a %d-by-1 "
+                       "vector, got %d-by-%d", name, n, n, cols);
   if (! m->take_tangent)
     refuse (name, "is not supported by this solver yet (its stages are "
             "implicit); use odeSE or odeSV with Separable or SecondOrder "
@@ -87,6 +130,8 @@ symmex_tangent_setup (const symmex_method *m, void *own,
   if (! tg)
     mexErrMsgIdAndTxt ("symplectic:nomem", "%s: out of memory for "
                        "TangentMap (%d-by-%d)", name, n, cols);
+  if (lyap)
+    sym_tangent_renormalise (tg);
   m->take_tangent (own, tg);
   return tg;
 }
@@ -105,6 +150,7 @@ symmex_tangent_attach (symmex_ctx *c, sym_tangent *tg)
   symmex_tangent *t = mxCalloc (1, sizeof *t);
   t->tg = tg;
   t->len = (size_t) c->n * (size_t) sym_tangent_columns (tg);
+  t->lyap = indicators (c->solver, c->o->indicators);
   c->tangent = t;
   /* (the stats name the source of the tangent's blocks) */
   if (c->jac_source == JAC_NONE)
@@ -115,12 +161,17 @@ void
 symmex_tangent_row (symmex_ctx *c)
 {
   symmex_tangent *t = c->tangent;
+  const int lyap = t->lyap;
   if (t->rows == t->cap)
     {
       size_t cap = t->cap ? 2 * t->cap : 64;
       t->buf = mxRealloc (t->buf, cap * t->len * sizeof (double));
+      if (lyap)
+        t->lbuf = mxRealloc (t->lbuf, cap * sizeof (double));
       t->cap = cap;
     }
+  if (lyap)
+    t->lbuf[t->rows] = sym_tangent_log_growth (t->tg);
   memcpy (t->buf + t->rows * t->len, sym_tangent_phi (t->tg),
           t->len * sizeof (double));
   t->rows++;
@@ -140,4 +191,16 @@ symmex_tangent_sol (symmex_ctx *c, mxArray *sol)
   t->buf = NULL;
   mxAddField (sol, "phi");
   mxSetField (sol, 0, "phi", phi);
+  if (! t->lbuf)
+    return;
+  /* the exponent's estimate at each row: the log growth over the time
+     from t0 (none at t0 itself) */
+  mxArray *ly = mxCreateDoubleMatrix (1, t->rows, mxREAL);
+  double *l = mxGetPr (ly);
+  for (size_t k = 0; k < t->rows; k++)
+    l[k] = k ? t->lbuf[k] / (c->tbuf[k] - c->tbuf[0]) : NAN;
+  mxFree (t->lbuf);
+  t->lbuf = NULL;
+  mxAddField (sol, "lyapunov");
+  mxSetField (sol, 0, "lyapunov", ly);
 }

@@ -234,6 +234,40 @@ check_vectors (void)
   sym_eval_free (&ev);
 }
 
+/* the renormalised column: its log growth is log |Phi v0| */
+static void
+check_renormalised (void)
+{
+  static const double y0[4] = { 0.5, 0.1, -0.2, 1.6 }, v0[4] = { 0, 1, 0, 0 };
+  tprob P;
+  sym_eval ev = tp_eval (&P, P_KEPLER, 1);
+  sym_tangent *ta = sym_tangent_new (2, 1, v0), *tb = sym_tangent_new (2, 1,
+                                                                      v0);
+  CHECK (sym_tangent_renormalise (tb) == SYM_SUCCESS, "renormalise");
+  sym_onestep_opts own;
+  memset (&own, 0, sizeof own);
+  own.separable = 1;
+  sym_method_opts o;
+  memset (&o, 0, sizeof o);
+  o.own = &own;
+  double y[4];
+  own.tangent = ta;
+  run_fixed (sym_step_se, &ev, &o, 0.0, 0.01, 500, y0, y, NULL, 0);
+  own.tangent = tb;
+  run_fixed (sym_step_se, &ev, &o, 0.0, 0.01, 500, y0, y, NULL, 0);
+  const double *a = sym_tangent_phi (ta), *b = sym_tangent_phi (tb);
+  const double na = sqrt (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]
+                          + a[3] * a[3]);
+  CHECK_CLOSE (sym_tangent_log_growth (tb), log (na), 1e-12, "log growth");
+  CHECK (na > 1.5, "grew: %g", na);
+  for (int i = 0; i < 4; i++)
+    CHECK_CLOSE (b[i], a[i] / na, 1e-13, "unit vector");
+  CHECK (sym_tangent_log_growth (ta) == 0.0, "no renormalisation");
+  sym_tangent_free (ta);
+  sym_tangent_free (tb);
+  sym_eval_free (&ev);
+}
+
 static void
 check_bad_input (void)
 {
@@ -242,6 +276,7 @@ check_bad_input (void)
   CHECK (sym_tangent_new (2, 0, NULL) == NULL, "no columns");
   sym_tangent_free (NULL);
   sym_tangent *tg = sym_tangent_new (1, 2, NULL);
+  CHECK (sym_tangent_renormalise (tg) == SYM_EBADINPUT, "renormalise 2");
   sym_onestep_opts own;
   sym_method_opts o;
   memset (&own, 0, sizeof own);
@@ -297,6 +332,7 @@ main (void)
   check_symplectic ();
   check_oscillator ();
   check_vectors ();
+  check_renormalised ();
   check_bad_input ();
   return tu_finish ("test_tangent");
 }

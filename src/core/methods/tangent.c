@@ -39,6 +39,8 @@ struct sym_tangent_s {
   double *ys, *fs, *ts;      /* 2 TG_CHUNK states, their f, their t */
   double *acc;               /* d */
   double *block;
+  int renorm;                /* the column kept at unit norm */
+  double logsum;             /* the sum of the logs of its norms */
 };
 
 sym_tangent *
@@ -120,12 +122,39 @@ sym_tangent_begin (sym_tangent *tg)
   memcpy (tg->trial, tg->phi, (size_t) tg->n * tg->m * sizeof (double));
 }
 
+int
+sym_tangent_renormalise (sym_tangent *tg)
+{
+  if (tg->m != 1)
+    return SYM_EBADINPUT;
+  tg->renorm = 1;
+  return SYM_SUCCESS;
+}
+
+double
+sym_tangent_log_growth (const sym_tangent *tg)
+{
+  return tg->logsum;
+}
+
 void
 sym_tangent_accept (sym_tangent *tg)
 {
   double *w = tg->phi;
   tg->phi = tg->trial;
   tg->trial = w;
+  if (! tg->renorm)
+    return;
+  double s = 0.0;
+  for (int i = 0; i < tg->n; i++)
+    s = hypot (s, tg->phi[i]);
+  /* (a vector that vanished or overflowed is left as it is) */
+  if (s > 0.0 && isfinite (s))
+    {
+      tg->logsum += log (s);
+      for (int i = 0; i < tg->n; i++)
+        tg->phi[i] /= s;
+    }
 }
 
 /* both blocks from the system's Df at (t, y), kept with their keys */
