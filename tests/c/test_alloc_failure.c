@@ -87,7 +87,8 @@ main (void)
                         SYM_NONLINEAR_NEWTON };
   /* the splitting stepper: fixed steps of yoshida4, explicit (with
      compensated sums) and implicit */
-  sym_onestep_opts y4e = { 1, 0, 1, 1, 0, 0 }, y4i = { 0, 0, 1, 0, 0, 0 };
+  sym_onestep_opts y4e = { 1, 0, 1, 1, 0, 0, NULL },
+                   y4i = { 0, 0, 1, 0, 0, 0, NULL };
   const struct {
     const char *name;
     const sym_stepper_type *const *type;

@@ -263,6 +263,21 @@ sym_fcache_f (sym_fcache *c, sym_eval *ev, double t, const double *a,
   return st;
 }
 
+void
+sym_fcache_feed (sym_fcache *c, const sym_tangent *tg, double t,
+                 const double *a, const double *b)
+{
+  const double *f = tg ? sym_tangent_f (tg, t, a, b) : NULL;
+  if (! f)
+    return;
+  const int d = c->d;
+  memcpy (c->yw, a, (size_t) d * sizeof (double));
+  memcpy (c->yw + d, b, (size_t) d * sizeof (double));
+  memcpy (c->fw, f, 2 * (size_t) d * sizeof (double));
+  c->tw = t;
+  c->have_fw = 1;
+}
+
 int
 sym_fcache_jac (sym_fcache *c, sym_eval *ev, double t, const double *a,
                 const double *b)

@@ -72,6 +72,10 @@ void sym_fcache_place (sym_fcache *c, int d, int jac, double *w);
 /* f at (t, [a; b]) into fw; no call when fw already holds f there */
 int sym_fcache_f (sym_fcache *c, sym_eval *ev, double t, const double *a,
                   const double *b);
+/* f at (t, [a; b]) into fw from the tangent map's last call of f and
+   Df, when it was there (tg NULL: nothing) */
+void sym_fcache_feed (sym_fcache *c, const sym_tangent *tg, double t,
+                      const double *a, const double *b);
 /* Df at (t, [a; b]) into jw.  For finite differences f is evaluated there
    first: the differences need it, and the iteration's first residual then
    finds it in fw. */

@@ -266,20 +266,19 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
       const double bh = s->b[k] * h, ah = s->a[k] * h;
       if (bh != 0.0)
         {
+          const double tk = sp_time (t, h, tr->tend, s->ca[k]);
+          /* (the tangent map's call of f and Df, when it makes one, gives
+             the kick's f) */
+          if (s->o.tg && (st = sym_tangent_kick (s->o.tg, ev, tk, q, p, bh)))
+            return st;
           if (! fp_ok)
             {
-              st = sym_fcache_f (&s->o.fc, ev,
-                                 sp_time (t, h, tr->tend, s->ca[k]), q, p);
-              if (st)
+              sym_fcache_feed (&s->o.fc, s->o.tg, tk, q, p);
+              if ((st = sym_fcache_f (&s->o.fc, ev, tk, q, p)))
                 return st;
               memcpy (fp, s->o.fc.fw + d, (size_t) d * sizeof (double));
               fp_ok = 1;
             }
-          if (s->o.tg
-              && (st = sym_tangent_kick (s->o.tg, ev, sp_time (t, h, tr->tend,
-                                                               s->ca[k]),
-                                         q, p, bh)))
-            return st;
           for (int i = 0; i < d; i++)
             if (comp)
               comp_add (&p[i], &c[d + i], bh * fp[i]);
@@ -289,20 +288,18 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
         }
       if (ah != 0.0)
         {
+          const double td = sp_time (t, h, tr->tend, s->cb[k]);
+          if (s->o.tg
+              && (st = sym_tangent_drift (s->o.tg, ev, td, q, p, ah, so)))
+            return st;
           if (! fq_ok)
             {
-              st = sym_fcache_f (&s->o.fc, ev,
-                                 sp_time (t, h, tr->tend, s->cb[k]), q, p);
-              if (st)
+              sym_fcache_feed (&s->o.fc, s->o.tg, td, q, p);
+              if ((st = sym_fcache_f (&s->o.fc, ev, td, q, p)))
                 return st;
               memcpy (fq, s->o.fc.fw, (size_t) d * sizeof (double));
               fq_ok = 1;
             }
-          if (s->o.tg
-              && (st = sym_tangent_drift (s->o.tg, ev,
-                                          sp_time (t, h, tr->tend, s->cb[k]),
-                                          q, p, ah, so)))
-            return st;
           for (int i = 0; i < d; i++)
             if (comp)
               comp_add (&q[i], &c[i], ah * fq[i]);

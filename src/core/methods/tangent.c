@@ -39,6 +39,9 @@ struct sym_tangent_s {
   double *ys, *fs, *ts;      /* 2 TG_CHUNK states, their f, their t */
   double *acc;               /* d */
   double *block;
+  int have_f;                /* f holds f at (tf, y): the last Df came
+                                with it (rhs_jac) */
+  double tf;
   int renorm;                /* the column kept at unit norm */
   double logsum;             /* the sum of the logs of its norms */
 };
@@ -164,10 +167,14 @@ blocks_from_df (sym_tangent *tg, sym_eval *ev, double t)
   const int d = tg->d, n = tg->n;
   if (! tg->df && ! (tg->df = sym_malloc ((size_t) n * n * sizeof (double))))
     return SYM_ENOMEM;
-  int st = ev->jac ? sym_jac (ev, t, tg->y, NULL, tg->df)
-                   : sym_rhs_jac (ev, t, tg->y, tg->f, tg->df);
+  /* f and Df in one call when the system has it: the step's own call
+     of f at the point is then served from it (sym_fcache_feed) */
+  int st = ev->rhs_jac ? sym_rhs_jac (ev, t, tg->y, tg->f, tg->df)
+                       : sym_jac (ev, t, tg->y, NULL, tg->df);
   if (st)
     return st;
+  tg->have_f = ev->rhs_jac != NULL;
+  tg->tf = t;
   for (int j = 0; j < d; j++)
     for (int i = 0; i < d; i++)
       {
@@ -245,12 +252,22 @@ block_at (sym_tangent *tg, sym_eval *ev, double t, const double *q,
   memcpy (tg->y, q, (size_t) d * sizeof (double));
   memcpy (tg->y + d, p, (size_t) d * sizeof (double));
   const int df = ev->jac || ev->rhs_jac;
+  tg->have_f = 0;
   /* (what is being overwritten is not kept if that fails) */
   tg->have[k] = 0;
   if (df)
     tg->have[1 - k] = 0;
   return df ? blocks_from_df (tg, ev, t)
             : block_by_differences (tg, ev, t, k);
+}
+
+const double *
+sym_tangent_f (const sym_tangent *tg, double t, const double *q,
+               const double *p)
+{
+  const int d = tg->d;
+  return tg->have_f && tg->tf == t && sym_same_vec (d, tg->y, q)
+         && sym_same_vec (d, tg->y + d, p) ? tg->f : NULL;
 }
 
 /* the rows dst of every column of the trial += c M (its rows src) */
@@ -294,6 +311,13 @@ sym_tangent_kick (sym_tangent *tg, sym_eval *ev, double t, const double *q,
     return st;
   apply (tg, tg->blk[0], 0, tg->d, c);
   return SYM_SUCCESS;
+}
+
+int
+sym_tangent_prefetch (sym_tangent *tg, sym_eval *ev, double t,
+                      const double *q, const double *p)
+{
+  return block_at (tg, ev, t, q, p, 1);
 }
 
 int

@@ -24,6 +24,14 @@ int sym_tangent_kick (sym_tangent *tg, sym_eval *ev, double t,
 int sym_tangent_drift (sym_tangent *tg, sym_eval *ev, double t,
                        const double *q, const double *p, double c,
                        int identity);
+/* the drift's block at (t, [q; p]) made ready (with Df, the kick's
+   too), no step of Phi */
+int sym_tangent_prefetch (sym_tangent *tg, sym_eval *ev, double t,
+                          const double *q, const double *p);
+/* f at (t, [q; p]) when the last Df came with it from there, else
+   NULL */
+const double *sym_tangent_f (const sym_tangent *tg, double t,
+                             const double *q, const double *p);
 /* the trial becomes the accepted Phi */
 void sym_tangent_accept (sym_tangent *tg);
 
