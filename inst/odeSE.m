@@ -82,23 +82,13 @@
 ## state, and @var{y} is numel(@var{t})-by-2d-by-K; the members can be
 ## split across processes.
 ## @item TangentMap, Indicators
-## With explicit fixed steps (@code{Separable} or @code{SecondOrder} on,
-## @code{TimeStepSize} or @code{TimeStepNumber}) and the one output
-## @var{sol}: @qcode{"on"} gives the derivative of the discrete map,
-## Phi = dy_k/dy_0, at each step point in @code{sol.phi}
-## (2d-by-2d-by-numel (sol.x)); a 2d-by-k matrix V0 gives Phi*V0
-## (2d-by-k-by-numel (sol.x)).  It is the exact derivative of the steps
-## taken (not an integration of the variational equations), with the
-## Hessian from @var{fcn}'s second output, @code{HamiltonianHessFcn} or
-## @code{Jacobian}, else from central differences of @var{fcn} (2d calls
-## a step for each of its two blocks, relative error about 1e-10 for an
-## @var{fcn} of unit scale).  @code{Indicators} @qcode{"lyapunov"} with
-## one deviation vector: the estimate of the maximal Lyapunov exponent
-## at each step point in @code{sol.lyapunov} (the vector in
-## @code{sol.phi} then renormalised at every step).  Not yet with
-## implicit or adaptive steps, @code{Events}, @code{Dense},
-## @code{Ensemble}, [@var{t}, @var{y}] outputs or a @var{sol} as
-## @var{y0} (an error says so).
+## Explicit fixed steps, one output: @qcode{"on"} gives Phi = dy_k/dy_0,
+## the exact derivative of the steps, in @code{sol.phi}
+## (2d-by-2d-by-numel (sol.x)); a 2d-by-k V0 gives Phi*V0.  Hessian from
+## @var{fcn}'s second output, @code{HamiltonianHessFcn}, else central
+## differences (about 1e-10 relative).  @qcode{"lyapunov"}: the maximal
+## Lyapunov exponent of one vector in @code{sol.lyapunov}.  User guide,
+## section 14.
 ## @end table
 ##
 ## A run that cannot go on (Newton fails, @var{fcn} returns NaN or Inf)

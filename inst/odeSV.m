@@ -84,9 +84,7 @@
 ## @item Hamiltonian, Dense, Ensemble, Parallel
 ## As in @code{odeSE}.
 ## @item TangentMap, Indicators
-## As in @code{odeSE}: Phi = dy_k/dy_0 of the explicit fixed steps of
-## every @code{Method} and @code{VerletForm} in @code{sol.phi}, and the
-## maximal Lyapunov exponent in @code{sol.lyapunov}.
+## As in @code{odeSE}, for every @code{Method} and @code{VerletForm}.
 ## @end table
 ##
 ## A run that cannot go on warns, with an identifier

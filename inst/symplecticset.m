@@ -83,16 +83,10 @@
 ## members integrated together; the number of local processes to split
 ## them across, or the connections @code{pconnect} returned (package
 ## @code{parallel}).  Default @qcode{"off"}, 1.
-## @item TangentMap
-## @code{odeSE}, @code{odeSV} with explicit fixed steps: @qcode{"on"}
-## returns the derivative of the discrete map, Phi = dy_k/dy_0, at each
-## step point in @code{sol.phi} (2d-by-2d-by-numel (sol.x)); a 2d-by-k
-## matrix V0 returns Phi*V0 (2d-by-k-by-numel (sol.x)).  Default
-## @qcode{"off"}; @code{help odeSV} for the rest.
-## @item Indicators
-## @qcode{"lyapunov"}, with @code{TangentMap} a 2d-by-1 deviation
-## vector: the estimate of the maximal Lyapunov exponent at each step
-## point in @code{sol.lyapunov}.  Default @qcode{"none"}.
+## @item TangentMap, Indicators
+## @code{odeSE}, @code{odeSV}: @qcode{"on"} (or a 2d-by-k V0) gives
+## Phi = dy_k/dy_0 (Phi*V0) in @code{sol.phi}; @qcode{"lyapunov"} the
+## maximal Lyapunov exponent in @code{sol.lyapunov}.  @code{help odeSE}.
 ## @end table
 ##
 ## A name that neither @code{odeset} nor this package knows gets a
