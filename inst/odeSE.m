@@ -81,6 +81,14 @@
 ## @qcode{"on"}: each column of @var{y0} (2d-by-K) is a member's initial
 ## state, and @var{y} is numel(@var{t})-by-2d-by-K; the members can be
 ## split across processes.
+## @item TangentMap, Indicators
+## Explicit fixed steps, one output: @qcode{"on"} gives Phi = dy_k/dy_0,
+## the exact derivative of the steps, in @code{sol.phi}
+## (2d-by-2d-by-numel (sol.x)); a 2d-by-k V0 gives Phi*V0.  Hessian from
+## @var{fcn}'s second output, @code{HamiltonianHessFcn}, else central
+## differences (about 1e-10 relative).  @qcode{"lyapunov"}: the maximal
+## Lyapunov exponent of one vector in @code{sol.lyapunov}.  User guide,
+## section 14.
 ## @end table
 ##
 ## A run that cannot go on (Newton fails, @var{fcn} returns NaN or Inf)

@@ -92,6 +92,8 @@
 ## As in @code{ode45}.
 ## @item Hamiltonian, Dense, Ensemble, Parallel
 ## As in @code{odeSE}.
+## @item TangentMap, Indicators
+## As in @code{odeSE}, for every @code{Method} and @code{VerletForm}.
 ## @end table
 ##
 ## A run that cannot go on warns, with an identifier

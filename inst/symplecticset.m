@@ -95,6 +95,10 @@
 ## second with the error @code{symplectic:parallel-worker} naming them
 ## and how the process ended; the package's processes are ended and
 ## reaped then, and the next run starts new ones.
+## @item TangentMap, Indicators
+## @code{odeSE}, @code{odeSV}: @qcode{"on"} (or a 2d-by-k V0) gives
+## Phi = dy_k/dy_0 (Phi*V0) in @code{sol.phi}; @qcode{"lyapunov"} the
+## maximal Lyapunov exponent in @code{sol.lyapunov}.  @code{help odeSE}.
 ## @end table
 ##
 ## A name that neither @code{odeset} nor this package knows gets a
@@ -127,7 +131,8 @@ function opts = symplecticset (varargin)
                        "Constraints", ...
                        "NewtonTol", "MaxNewtonIterations", "NewtonMatrix", ...
                        "NewtonSystem", "NonlinearSolver", "MaxSteps", "Hamiltonian", "Dense", "StepControl", ...
-                       "StepDensityFcn", "Ensemble", "Parallel"};
+                       "StepDensityFcn", "Ensemble", "Parallel", ...
+                       "TangentMap", "Indicators"};
   persistent odeset_fields = fieldnames (odeset ());
 
   if (nargin == 0 && nargout == 0)
@@ -157,6 +162,8 @@ function opts = symplecticset (varargin)
     printf ("     StepDensityFcn:  function handle, []\n");
     printf ("           Ensemble:  {[\"off\"], \"on\"}\n");
     printf ("           Parallel:  integer, >0, [1]; or pconnect's connections\n");
+    printf ("         TangentMap:  {[\"off\"], \"on\"}, or a 2d-by-k matrix\n");
+    printf ("         Indicators:  {[\"none\"], \"lyapunov\"}\n");
     return;
   endif
 

@@ -67,6 +67,17 @@ function varargout = __sol_extend__ (solver, gateway, nout, fcn, tspan, sol, var
     endif
   endif
 
+  ## sol.phi would not join the sol's (Phi restarts at the identity)
+  if (isstruct (opts) && isfield (opts, "TangentMap")
+      && ! isempty (opts.TangentMap)
+      && ! (ischar (opts.TangentMap) && any (strcmpi (opts.TangentMap, {"off", "no"})))
+      && ! (isscalar (opts.TangentMap) && ! ischar (opts.TangentMap)
+            && ! opts.TangentMap))
+    error ("Octave:invalid-input-arg",
+           "%s: TangentMap is not supported with a sol as Y0 (Phi would restart from the identity there); start from the state sol.y(:,end)",
+           solver);
+  endif
+
   ## where the run starts: the last step point before the last step, when
   ## the sol says how its steps go on from there, TSPAN's output times are
   ## beyond it, and no options that change the steps were given

@@ -374,6 +374,8 @@ typedef struct {
                    SE and SV factor theirs by KLU */
   int position; /* SV and the compositions: drift-kick-drift Verlet steps
                    (explicit only), else kick-drift-kick */
+  struct sym_tangent_s *tangent;  /* NULL, or the tangent map the explicit
+                                     fixed steps carry (below) */
 } sym_onestep_opts;
 extern const sym_stepper_type *const sym_step_se;
 extern const sym_stepper_type *const sym_step_sv;
@@ -441,6 +443,31 @@ enum { SYM_SYSTEM_AUTO = 0, SYM_SYSTEM_FULL = 1, SYM_SYSTEM_STAGES = 2 };
 extern const sym_stepper_type *const sym_step_spvi;
 /* its order: 2 min(n - 1, 2m - n + 1) for n modes and m nodes */
 int sym_spvi_order (int q_dofs, int nodes);
+
+/* ---------------------------------------------------------------- tangent */
+/* The tangent map of a run of explicit steps (SE, SV, the splitting
+   stepper; sym_onestep_opts.tangent): Phi = d y_k / d y_0 applied to m
+   columns (n-by-m; the full map when they start as the identity), the
+   exact derivative of the discrete map, carried through every kick by
+   d f_p / d q and every drift by d f_q / d p (the identity with
+   second_order).  Those blocks come from the system's Df (jac, or
+   rhs_jac's), else from central differences of f, 2d calls a block.
+   The steppers refuse it (SYM_EBADINPUT) with implicit steps or an
+   error estimate. */
+typedef struct sym_tangent_s sym_tangent;
+/* v0: the n-by-m initial columns, or NULL for the identity (m = n);
+   NULL on bad sizes or without memory */
+sym_tangent *sym_tangent_new (int dim, int m, const double *v0);
+void sym_tangent_free (sym_tangent *tg);     /* NULL is fine */
+/* Phi at the end of the last accepted step (v0 before the first) */
+const double *sym_tangent_phi (const sym_tangent *tg);
+int sym_tangent_columns (const sym_tangent *tg);
+/* the maximal Lyapunov exponent's renormalisation (one column only,
+   else SYM_EBADINPUT): after every accepted step the column is scaled
+   to unit norm and the log of its norm added up (what
+   sym_tangent_log_growth returns), so that it never overflows */
+int sym_tangent_renormalise (sym_tangent *tg);
+double sym_tangent_log_growth (const sym_tangent *tg);
 
 /* ---------------------------------------------------------------- driver */
 /* Events: value[k] for k < nevents; isterminal/direction as in Octave.

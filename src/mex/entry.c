@@ -117,12 +117,17 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   const sym_stepper_type *type = m->stepper ? m->stepper (name, own, &o)
                                  : *m->type;
   symmex_ensemble_check (name, &a, &o, nlhs);
+  sym_tangent *tg = symmex_tangent_setup (m, own, &a, &o, nlhs);
   sym_system sys;
   const int second = m->second_order && m->second_order (own);
-  symmex_ctx *c = symmex_problem (name, &a, &o, m->needs_newton (own),
+  const int need_jac = m->needs_newton (own)
+                       || (tg && symmex_tangent_needs_jac (&o, second));
+  symmex_ctx *c = symmex_problem (name, &a, &o, need_jac,
                                   second, m->sep_broken
                                   && ! m->needs_newton (own) && ! second,
                                   nlhs, &sys);
+  if (tg)
+    symmex_tangent_attach (c, tg);
   if (m->needs_newton (own) && m->take_sparse && m->take_sparse (own, 0)
       && symmex_sparse_source (c, &a))
     {
@@ -170,6 +175,7 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   if (o.stats)
     symmex_print_stats (&st, jac_used, c);
   symmex_outputs (m, own, c, &st, jac_used, nlhs, plhs);
+  sym_tangent_free (tg);
   if (nlhs == 1 && (status == SYM_DONE || status == SYM_STOP_EVENT
                     || status == SYM_STOP_OUTPUT))
     symmex_sol_restart (plhs[0], &st, a.opts);

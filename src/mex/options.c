@@ -375,6 +375,8 @@ parse_common (const char *solver, const mxArray *opts, int n, symmex_opts *o)
   if (o->constraints && strcmp (solver, "odeSV") != 0)
     mexErrMsgIdAndTxt (SYMMEX_BADARG, "%s: Constraints is not supported by "
                        "%s yet; odeSV takes them (RATTLE)", solver, solver);
+  o->tangent = field_as_given (solver, opts, "TangentMap");
+  o->indicators = field_as_given (solver, opts, "Indicators");
   parse_steps (solver, opts, o);
 
   /* odeset fields that would change the problem solved: not taken (a
@@ -487,8 +489,8 @@ static const char *const odeset_names[] = {
 static const char *const common_names[] = {
   "TimeStepSize", "TimeStepNumber", "HamiltonianHessFcn", "NewtonTol",
   "MaxNewtonIterations", "MaxSteps", "Hamiltonian", "Dense", "StepControl",
-  "StepDensityFcn", "Ensemble", "Parallel", "__members__",
-  "Constraints", NULL
+  "StepDensityFcn", "Ensemble", "Parallel", "TangentMap", "Indicators",
+  "__members__", "Constraints", NULL
 };
 
 /* The edit distance of a and b, without regard to case */

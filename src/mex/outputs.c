@@ -178,6 +178,8 @@ symmex_sink_row (double t, const double *y, void *user)
   c->tbuf[c->nrows] = t;
   memcpy (symmex_row (c, c->nrows), y, sizeof (double) * c->n);
   c->nrows++;
+  if (c->tangent)
+    symmex_tangent_row (c);
   if (c->o->outputfcn && c->nrows > 1)
     {
       if (symmex_outputfcn (c, &t, 1, y, ""))
@@ -415,6 +417,8 @@ sol_struct (const symmex_method *m, const void *own, symmex_ctx *c,
       mxAddField (s, "dense");
       mxSetField (s, 0, "dense", dense_struct (c));
     }
+  if (c->tangent)
+    symmex_tangent_sol (c, s);
   if (m->sol_fields)
     m->sol_fields (s, own, st);
   return s;

@@ -51,6 +51,9 @@ typedef struct {
   /* whether the method takes Df sparse (and, with commit, notes in own
      that it will); NULL: never (a sparse Df is made full) */
   int (*take_sparse) (void *own, int commit);
+  /* own carries the tangent map tg (TangentMap; tangent.c); NULL: the
+     method has none */
+  void (*take_tangent) (void *own, sym_tangent *tg);
 } symmex_method;
 
 extern const symmex_method symmex_method_se;
@@ -134,6 +137,8 @@ typedef struct symmex_opts_s {
   const mxArray *densityfcn;  /* StepDensityFcn, or NULL */
   int ensemble;               /* Ensemble: the columns of Y0 are members */
   const mxArray *constraints; /* Constraints (odeSV), or NULL */
+  const mxArray *tangent;     /* TangentMap as given, or NULL */
+  const mxArray *indicators;  /* Indicators as given, or NULL */
 } symmex_opts;
 
 /* Parse OPTS (an odeset struct, a plain struct, or []) for a problem of
@@ -226,6 +231,8 @@ typedef struct symmex_ctx_s {
   /* FCN is compiled (symcompile): its functions, or NULL */
   struct symmex_compiled_s *compiled;
   unsigned called;             /* bits 1 << SYMMEX_CB_*: called once */
+  /* TangentMap: Phi at the rows (tangent.c), or NULL */
+  struct symmex_tangent_s *tangent;
 } symmex_ctx;
 
 /* the user's functions whose first call is checked (symmex_call_cb) */
@@ -389,6 +396,21 @@ void symmex_ensemble_check (const char *name, const symmex_args *a,
    (symmex_malloc_or_null), since an error raised on a member's stack
    could not unwind */
 extern int symmex_in_ensemble;
+
+/* tangent.c: TangentMap.  Its value read and checked against the run
+   (what this version does not carry Phi through is an error naming the
+   solver and the option); NULL when off.  own carries it then. */
+sym_tangent *symmex_tangent_setup (const symmex_method *m, void *own,
+                                   const symmex_args *a,
+                                   const symmex_opts *o, int nlhs);
+/* whether the run needs the Jacobian's source for it (FCN's second
+   output, HamiltonianHessFcn, Jacobian) */
+int symmex_tangent_needs_jac (const symmex_opts *o, int second_order);
+/* c keeps Phi at its rows (symmex_sink_row calls symmex_tangent_row) */
+void symmex_tangent_attach (symmex_ctx *c, sym_tangent *tg);
+void symmex_tangent_row (symmex_ctx *c);
+/* sol.phi, n-by-m-by-rows (the kept Phi freed) */
+void symmex_tangent_sol (symmex_ctx *c, mxArray *sol);
 
 /* ------------------------------------------------------------ messages */
 /* The warning of a run that could not go on (or the error it is), after

@@ -252,8 +252,8 @@ tp_eval (tprob *P, int kind, int with_jac)
 static inline sym_method_opts
 tp_opts (int separable, int want_dense)
 {
-  static const sym_onestep_opts own[2] = { { 0, 0, 0, 0, 0, 0 },
-                                           { 1, 0, 0, 0, 0, 0 } };
+  static const sym_onestep_opts own[2] = { { 0, 0, 0, 0, 0, 0, NULL },
+                                           { 1, 0, 0, 0, 0, 0, NULL } };
   sym_method_opts o;
   memset (&o, 0, sizeof (o));
   o.own = &own[separable != 0];

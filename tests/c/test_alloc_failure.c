@@ -81,12 +81,14 @@ int
 main (void)
 {
   sym_set_allocator (drv_counting_alloc, drv_counting_free);
-  sym_onestep_opts sep = { 1, 0, 0, 0, 0, 0 }, impl = { 0, 0, 0, 0, 0, 0 };
+  sym_onestep_opts sep = { 1, 0, 0, 0, 0, 0, NULL },
+                   impl = { 0, 0, 0, 0, 0, 0, NULL };
   sym_spvi_opts sp = { 0, 0, SYM_MATRIX_AUTO, SYM_SYSTEM_AUTO, 0,
                         SYM_NONLINEAR_NEWTON };
   /* the splitting stepper: fixed steps of yoshida4, explicit (with
      compensated sums) and implicit */
-  sym_onestep_opts y4e = { 1, 0, 1, 1, 0, 0 }, y4i = { 0, 0, 1, 0, 0, 0 };
+  sym_onestep_opts y4e = { 1, 0, 1, 1, 0, 0, NULL },
+                   y4i = { 0, 0, 1, 0, 0, 0, NULL };
   const struct {
     const char *name;
     const sym_stepper_type *const *type;

@@ -250,7 +250,7 @@ check_energy (void)
   const double first = e_first, last = e_last, dl = e_l;
   const long calls = st.cnt.nrhs;
   /* fixed steps: one call each */
-  static sym_onestep_opts own = { 1, 1, 0, 0, 0, 0 };
+  static sym_onestep_opts own = { 1, 1, 0, 0, 0, 0, NULL };
   sym_system sys = tp_system (&P, P_KEPLER, 0);
   sym_method_opts mo;
   memset (&mo, 0, sizeof mo);

@@ -25,6 +25,16 @@ sym_onestep_new (int dim, int order, size_t size,
       return NULL;
     }
   const sym_onestep_opts *own = opts ? opts->own : NULL;
+  /* the tangent map of explicit steps only */
+  if (own && own->tangent
+      && ((! own->separable && ! own->second_order)
+          || ! sym_tangent_fits (own->tangent, dim)))
+    {
+      sym_free (o);
+      *status = SYM_EBADINPUT;
+      return NULL;
+    }
+  o->tg = own ? own->tangent : NULL;
   o->d = dim;
   o->n = 2 * dim;
   o->order = order;
@@ -191,6 +201,8 @@ sym_onestep_accept (void *state)
   if (o->r.trial_ok)
     for (int k = 0; k < o->npr; k++)
       sym_pred_commit (&o->pr[k]);
+  if (o->r.trial_ok && o->tg)
+    sym_tangent_accept (o->tg);
   recs_accept (&o->r);
 }
 
@@ -249,6 +261,21 @@ sym_fcache_f (sym_fcache *c, sym_eval *ev, double t, const double *a,
   if (st == SYM_SUCCESS)
     c->have_fw = 1;
   return st;
+}
+
+void
+sym_fcache_feed (sym_fcache *c, const sym_tangent *tg, double t,
+                 const double *a, const double *b)
+{
+  const double *f = tg ? sym_tangent_f (tg, t, a, b) : NULL;
+  if (! f)
+    return;
+  const int d = c->d;
+  memcpy (c->yw, a, (size_t) d * sizeof (double));
+  memcpy (c->yw + d, b, (size_t) d * sizeof (double));
+  memcpy (c->fw, f, 2 * (size_t) d * sizeof (double));
+  c->tw = t;
+  c->have_fw = 1;
 }
 
 int
@@ -341,6 +368,8 @@ sym_onestep_begin (sym_onestep *o, const sym_eval *ev, double t, double h,
       || ! isfinite (tend) || h == 0.0)
     return SYM_EBADINPUT;
   *cont = sym_recs_begin (&o->r, t, h, tend, y);
+  if (o->tg)
+    sym_tangent_begin (o->tg);
   return SYM_SUCCESS;
 }
 
@@ -378,6 +407,10 @@ sym_onestep_set_tolerances (void *state, const sym_tolerances *tol)
 {
   sym_onestep *o = state;
   (void) tol;
+  /* the tangent map is of fixed steps (an adaptive run's rejected
+     trials and the step size's dependence on y are not carried) */
+  if (o->tg)
+    return SYM_EBADINPUT;
   o->want_f = 1;
   for (int k = 0; k < o->npr; k++)
     sym_kept_adaptive (&o->k[k]);

@@ -12,6 +12,7 @@
 
 #include "../sym.h"
 #include "../numerics/numerics.h"
+#include "tangent.h"
 
 /* ---------------------------------------------------------------- records */
 /* One step: its start, end, the f values known at its two ends, and the
@@ -71,6 +72,10 @@ void sym_fcache_place (sym_fcache *c, int d, int jac, double *w);
 /* f at (t, [a; b]) into fw; no call when fw already holds f there */
 int sym_fcache_f (sym_fcache *c, sym_eval *ev, double t, const double *a,
                   const double *b);
+/* f at (t, [a; b]) into fw from the tangent map's last call of f and
+   Df, when it was there (tg NULL: nothing) */
+void sym_fcache_feed (sym_fcache *c, const sym_tangent *tg, double t,
+                      const double *a, const double *b);
 /* Df at (t, [a; b]) into jw.  For finite differences f is evaluated there
    first: the differences need it, and the iteration's first residual then
    finds it in fw. */
@@ -235,6 +240,7 @@ typedef struct {
   int want_f;            /* f at both ends of every step (estimate,
                             dense output) */
   int sparse;            /* implicit with a sparse Df */
+  sym_tangent *tg;       /* the tangent map the steps carry, or NULL */
 } sym_onestep;
 
 /* o's f cache placed at w, with a dense Df when implicit and not sparse,

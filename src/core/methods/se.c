@@ -75,12 +75,24 @@ se_step (void *state, sym_eval *ev, double t, double h, double tend,
         return st;
       for (int i = 0; i < d; i++)
         v.p1[i] = v.p0[i] + h * v.tr->f0[d + i];
+      sym_tangent *tg = s->o.tg;
+      /* the drift's blocks first: from Df, the kick's A comes with them
+         (the same q), and f at the drift's point for q1 */
+      if (tg && ! s->o.second_order
+          && (st = sym_tangent_prefetch (tg, ev, t, v.q0, v.p1)))
+        return st;
+      if (tg && (st = sym_tangent_kick (tg, ev, t, v.q0, v.p0, h)))
+        return st;
+      if (tg && (st = sym_tangent_drift (tg, ev, t, v.q0, v.p1, h,
+                                         s->o.second_order)))
+        return st;
       if (s->o.second_order)
         {
           for (int i = 0; i < d; i++)
             v.q1[i] = v.q0[i] + h * v.p1[i];
           return sym_recs_finish (&s->o.r, ev, s->o.want_f, yerr, ynext);
         }
+      sym_fcache_feed (&s->o.fc, tg, t, v.q0, v.p1);
       st = sym_fcache_f (&s->o.fc, ev, t, v.q0, v.p1);
       if (st)
         return st;

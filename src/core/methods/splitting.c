@@ -85,7 +85,7 @@ sp_inner (sp_state *s, const sym_method_opts *opts)
     io = *opts;
   else
     memset (&io, 0, sizeof io);
-  static const sym_onestep_opts implicit = { 0, 0, 0, 0, 0, 0 };
+  static const sym_onestep_opts implicit = { 0, 0, 0, 0, 0, 0, NULL };
   io.own = &implicit;
   io.want_dense = 0;
   s->inner = sym_calloc ((size_t) k, sizeof (void *));
@@ -266,11 +266,15 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
       const double bh = s->b[k] * h, ah = s->a[k] * h;
       if (bh != 0.0)
         {
+          const double tk = sp_time (t, h, tr->tend, s->ca[k]);
+          /* (the tangent map's call of f and Df, when it makes one, gives
+             the kick's f) */
+          if (s->o.tg && (st = sym_tangent_kick (s->o.tg, ev, tk, q, p, bh)))
+            return st;
           if (! fp_ok)
             {
-              st = sym_fcache_f (&s->o.fc, ev,
-                                 sp_time (t, h, tr->tend, s->ca[k]), q, p);
-              if (st)
+              sym_fcache_feed (&s->o.fc, s->o.tg, tk, q, p);
+              if ((st = sym_fcache_f (&s->o.fc, ev, tk, q, p)))
                 return st;
               memcpy (fp, s->o.fc.fw + d, (size_t) d * sizeof (double));
               fp_ok = 1;
@@ -284,11 +288,14 @@ sp_explicit (sp_state *s, sym_eval *ev, int cont, double *yerr,
         }
       if (ah != 0.0)
         {
+          const double td = sp_time (t, h, tr->tend, s->cb[k]);
+          if (s->o.tg
+              && (st = sym_tangent_drift (s->o.tg, ev, td, q, p, ah, so)))
+            return st;
           if (! fq_ok)
             {
-              st = sym_fcache_f (&s->o.fc, ev,
-                                 sp_time (t, h, tr->tend, s->cb[k]), q, p);
-              if (st)
+              sym_fcache_feed (&s->o.fc, s->o.tg, td, q, p);
+              if ((st = sym_fcache_f (&s->o.fc, ev, td, q, p)))
                 return st;
               memcpy (fq, s->o.fc.fw, (size_t) d * sizeof (double));
               fq_ok = 1;

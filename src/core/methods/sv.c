@@ -233,6 +233,11 @@ sv_position (sv_state *s, sym_eval *ev, const sym_trial *v)
     }
   for (int i = 0; i < d; i++)
     qh[i] = v->q0[i] + hh * fq[i];
+  sym_tangent *tg = s->o.tg;
+  if (tg && ((st = sym_tangent_drift (tg, ev, t, v->q0, v->p0, hh, so))
+             || (st = sym_tangent_kick (tg, ev, t + hh, qh, v->p0, h))))
+    return st;
+  sym_fcache_feed (&s->o.fc, tg, t + hh, qh, v->p0);
   if ((st = sym_fcache_f (&s->o.fc, ev, t + hh, qh, v->p0)))  /* B */
     return st;
   /* f_q at p_k with q_k (or q_{k-1/2}) and with q_{k+1/2}: the same if H
@@ -241,12 +246,16 @@ sv_position (sv_state *s, sym_eval *ev, const sym_trial *v)
     sym_sep_check (ev, t, d, s->fqa, s->o.fc.fw);
   for (int i = 0; i < d; i++)
     v->p1[i] = v->p0[i] + h * s->o.fc.fw[d + i];
+  if (tg && (st = sym_tangent_drift (tg, ev, v->tr->tend, qh, v->p1, hh,
+                                     so)))
+    return st;
   if (so)
     {
       for (int i = 0; i < d; i++)
         v->q1[i] = qh[i] + hh * v->p1[i];
       return SYM_SUCCESS;
     }
+  sym_fcache_feed (&s->o.fc, tg, v->tr->tend, qh, v->p1);
   if ((st = sym_fcache_f (&s->o.fc, ev, v->tr->tend, qh, v->p1)))  /* C */
     return st;
   for (int i = 0; i < d; i++)
@@ -293,11 +302,17 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
         }
       for (int i = 0; i < d; i++)
         ph[i] = v.p0[i] + hh * fp[i];
+      if (s->o.tg
+          && ((st = sym_tangent_kick (s->o.tg, ev, t, v.q0, v.p0, hh))
+              || (st = sym_tangent_drift (s->o.tg, ev, t + hh, v.q0, ph, h,
+                                          s->o.second_order))))
+        return st;
       if (s->o.second_order)
         for (int i = 0; i < d; i++)
           v.q1[i] = v.q0[i] + h * ph[i];
       else
         {
+          sym_fcache_feed (&s->o.fc, s->o.tg, t + hh, v.q0, ph);
           st = sym_fcache_f (&s->o.fc, ev, t + hh, v.q0, ph);     /* A */
           if (st)
             return st;
@@ -305,6 +320,10 @@ sv_step (void *state, sym_eval *ev, double t, double h, double tend,
             v.q1[i] = v.q0[i] + h * s->o.fc.fw[i];
           memcpy (s->fqa, s->o.fc.fw, (size_t) d * sizeof (double));
         }
+      if (s->o.tg
+          && (st = sym_tangent_kick (s->o.tg, ev, v.tr->tend, v.q1, ph, hh)))
+        return st;
+      sym_fcache_feed (&s->o.fc, s->o.tg, v.tr->tend, v.q1, ph);
       st = sym_fcache_f (&s->o.fc, ev, v.tr->tend, v.q1, ph);   /* B */
       if (st)
         return st;

@@ -57,3 +57,9 @@ symmex_onestep_take_sparse (void *own, int commit)
     o->sparse = 1;
   return ok;
 }
+
+void
+symmex_onestep_take_tangent (void *own, sym_tangent *tg)
+{
+  ((sym_onestep_opts *) own)->tangent = tg;
+}

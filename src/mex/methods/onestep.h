@@ -15,5 +15,6 @@ int symmex_onestep_second_order (const void *own);
 /* the implicit steps of Stoermer-Verlet and symplectic Euler take a
    sparse Df (the compositions of Method, and explicit steps, do not) */
 int symmex_onestep_take_sparse (void *own, int commit);
+void symmex_onestep_take_tangent (void *own, sym_tangent *tg);
 
 #endif

@@ -15,5 +15,6 @@ const symmex_method symmex_method_se = {
   "odeSE", &sym_step_se, sizeof (sym_onestep_opts), symmex_onestep_parse,
   symmex_onestep_options, symmex_onestep_needs_newton, NULL, NULL,
   "dH/dq changed with p at the same q", NULL, symmex_onestep_second_order,
-  se_asymmetric, symmex_onestep_take_sparse
+  se_asymmetric, symmex_onestep_take_sparse,
+  symmex_onestep_take_tangent
 };

@@ -145,5 +145,6 @@ const symmex_method symmex_method_sv = {
   "odeSV", &sym_step_sv, sizeof (sym_onestep_opts), sv_parse,
   sv_options, symmex_onestep_needs_newton, sv_sol_fields, NULL,
   "dH/dp changed with q (or t) at the same p", sv_stepper,
-  symmex_onestep_second_order, sv_asymmetric, symmex_onestep_take_sparse
+  symmex_onestep_second_order, sv_asymmetric, symmex_onestep_take_sparse,
+  symmex_onestep_take_tangent
 };
