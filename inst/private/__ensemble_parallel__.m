@@ -331,6 +331,7 @@ function id = warning_id (msg)
     "is not supported and is ignored", "symplectic:unsupported-option"
     "is below 100\\*eps", "symplectic:tolerance"
     "unknown option", "symplectic:unknown-option"
+    "Y0 was off the Constraints", "symplectic:constraints-projected"
     "is ignored without StepControl|for adaptive steps only and|is used by .* only; ignored", "symplectic:ignored-option"};
   id = "";
   for i = 1:rows (table)

@@ -62,7 +62,7 @@ lin_case (double a, double first_dx, int *st, long *nnewton, long *nres)
     return INFINITY;
   sym_kept_adaptive (&k);                 /* the tolerance itself */
   lin_prob L = { &k, 1.0, 0.5, 0.1, 0, 0.0 };
-  sym_newton_problem prob = { lin_res, lin_mat, &L, NULL, NULL };
+  sym_newton_problem prob = { lin_res, lin_mat, &L, NULL, NULL, NULL };
   /* ref 1: the scale is 1 near the roots */
   const double ref = 1.0;
   double x = 0.0, scale;
@@ -133,7 +133,7 @@ scenario_noisy (void)
   CHECK (st == 0, "init: %d", st);
   sym_kept_adaptive (&k);
   lin_prob L = { &k, 1.0, 0.75, 0.1, 0, 10 * tol };
-  sym_newton_problem prob = { lin_res, lin_mat, &L, NULL, NULL };
+  sym_newton_problem prob = { lin_res, lin_mat, &L, NULL, NULL, NULL };
   const double ref = 1.0;
   double x = L.r, scale;
   st = sym_kept_solve (&k, &prob, &ev, L.h, 1, &ref, &x, &scale);
