@@ -29,11 +29,9 @@
 ## step is the same symplectic map: the energy error stays bounded, of
 ## size O(h^2), however long the run, and the momenta of the symmetries
 ## of H are conserved to round-off.  Adaptive steps (the default) control
-## the local error instead and lose that guarantee.  @code{StepControl}
-## @qcode{"reversible"} gives adaptive steps that keep the energy error
-## bounded too: they follow a step density by a time-symmetric
-## recurrence, so that they crowd where the motion is fast (an eccentric
-## orbit's pericentre) and the whole run stays time-reversible.
+## the local error instead and lose that guarantee; @code{StepControl}
+## @qcode{"reversible"} keeps it with time-symmetric adaptive steps that
+## crowd where the motion is fast (an eccentric orbit's pericentre).
 ##
 ## @var{tspan}, @var{opts}, @var{par1}, @dots{} and the outputs are as in
 ## @code{odeSE}; @var{sol} also has method and order.  A @var{sol} as
@@ -75,14 +73,10 @@
 ## every Method but Verlet's, and for reversible steps; @qcode{"off"}
 ## turns it off.
 ## @item Constraints
-## Holonomic constraints g(q) = 0: a handle @code{g = con (q)}, m < d
-## values, or @code{[g, G] = con (q)} with G = dg/dq (m-by-d, full or
-## sparse, taken as full; else central differences).  The steps are
-## RATTLE's: order 2, symmetric, symplectic on g = 0, which they keep to
-## round-off with G(q) dH/dp = 0.  A @var{y0} off them is moved onto them
-## with a warning (an error past 1e-2 of the largest |y0_i|).  Fixed
-## steps with @code{Separable} or @code{SecondOrder} only in this release
-## (not adaptive or reversible steps, Method, Ensemble, a general H).
+## Holonomic constraints g(q) = 0: @code{g = con (q)} (m < d values) or
+## @code{[g, G] = con (q)}, G = dg/dq.  RATTLE steps: order 2, symmetric,
+## symplectic on the constraints, kept to round-off; fixed steps with
+## @code{Separable} or @code{SecondOrder} (user guide, section 11).
 ## @item Jacobian, HamiltonianHessFcn, JPattern
 ## Other sources of Newton's matrix, as in @code{odeSE}.
 ## @item Vectorized
