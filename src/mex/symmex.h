@@ -399,6 +399,9 @@ int symmex_is_vector (const mxArray *a);
    and values returned by the user's functions are taken as their full
    equivalents. */
 mxArray *symmex_full (const mxArray *a);
+/* a's data asked for before anything else of it (values.c: what Octave
+   leaks otherwise); every value from Octave goes through it first */
+void symmex_settle (const mxArray *a);
 
 /* Octave's mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt put "NAME: " (the
    running MEX function's name) in front of every message, and ours already
