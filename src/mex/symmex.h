@@ -410,6 +410,8 @@ void symmex_settle (const mxArray *a);
    message reads as written.  Every mexErrMsgIdAndTxt/mexWarnMsgIdAndTxt of
    the MEX layer goes through them. */
 void symmex_err (const char *id, const char *fmt, ...);
+/* frees every block the core holds (entry.c): before an error */
+void symmex_release_core (void);
 void symmex_warn (const char *id, const char *fmt, ...);
 #ifndef SYMMEX_NO_REDIRECT
 #define mexErrMsgIdAndTxt symmex_err
