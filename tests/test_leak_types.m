@@ -52,7 +52,7 @@
 %! ## 400 Ensemble runs whose sparse Hessian from a file (cleared before
 %! ## each) goes wrong at t > 0.2: 64 kB at most (192 kB before the fix)
 %! nf = str2double (regexp (out, 'FAILCALLS (\d+) (\d+)', "tokens", "once"));
-%! assert (nf, [400 400]);
+%! assert (nf(:).', [400 400]);
 %! fgrow = str2double (regexp (out, 'FAILGROWTH (-?\d+) kB', "tokens", "once"){1});
 %! printf ("test_leak_types: %d failing calls: VmRSS %+d kB\n", nf(1), fgrow);
 %! assert (fgrow <= 64, sprintf ("VmRSS grew by %d kB in the failing runs:\n%s",
