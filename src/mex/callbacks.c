@@ -191,6 +191,8 @@ symmex_call (int nout, mxArray **out, int nargs, mxArray **args,
     mexCallMATLAB (nout, out, nargs - 1, args + 1, name);
   else
     mexCallMATLAB (nout, out, nargs, args, "feval");
+  for (int i = 0; i < nout; i++)
+    symmex_settle (out[i]);
 }
 
 /* ------------------------------------------------------------ callbacks */

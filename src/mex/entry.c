@@ -81,26 +81,72 @@ symmex_malloc_or_null (size_t nbytes)
    ends); a block of SYMMEX_PROBE_BYTES or more that cannot be had comes
    back as NULL (symmex_malloc_or_null): the core then stops with
    SYM_ENOMEM, said with the block's size and the solver's name
-   (mxMalloc's own error names the gateway) */
+   (mxMalloc's own error names the gateway).  Each block is linked in a
+   list, so that an error can free what the run holds before it leaves
+   (symmex_release_core): Octave 7 frees a block left to it, but keeps
+   its address in a list of its own for good (bench/NOTES.md). */
+typedef struct core_block core_block;
+struct core_block {
+  core_block *prev, *next;
+};
+static core_block *core_blocks;
+
 static void *
 core_alloc (size_t nbytes)
 {
-  if (nbytes < SYMMEX_PROBE_BYTES && ! symmex_in_ensemble)
-    return mxMalloc (nbytes);
-  void *p = symmex_malloc_or_null (nbytes);
-  if (! p)
-    symmex_alloc_failed = nbytes;
-  return p;
+  const size_t hdr = sizeof (core_block);
+  if (nbytes > SIZE_MAX - hdr)
+    return NULL;
+  core_block *b = nbytes < SYMMEX_PROBE_BYTES && ! symmex_in_ensemble
+                  ? mxMalloc (nbytes + hdr)
+                  : symmex_malloc_or_null (nbytes + hdr);
+  if (! b)
+    {
+      symmex_alloc_failed = nbytes;
+      return NULL;
+    }
+  b->prev = NULL;
+  b->next = core_blocks;
+  if (core_blocks)
+    core_blocks->prev = b;
+  core_blocks = b;
+  return b + 1;
+}
+
+static void
+core_free (void *ptr)
+{
+  if (! ptr)
+    return;
+  core_block *b = (core_block *) ptr - 1;
+  if (b->prev)
+    b->prev->next = b->next;
+  else
+    core_blocks = b->next;
+  if (b->next)
+    b->next->prev = b->prev;
+  mxFree (b);
 }
 
 void
-symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
-            const mxArray *prhs[])
+symmex_release_core (void)
+{
+  while (core_blocks)
+    {
+      core_block *b = core_blocks;
+      core_blocks = b->next;
+      mxFree (b);
+    }
+}
+
+static void
+run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
+     const mxArray *prhs[])
 {
   const char *name = m->name;
   symmex_alloc_failed = 0;
   symmex_in_ensemble = 0;
-  sym_set_allocator (core_alloc, mxFree);
+  sym_set_allocator (core_alloc, core_free);
 
   symmex_args a;
   symmex_opts o;
@@ -179,4 +225,17 @@ symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
   if (nlhs == 1 && (status == SYM_DONE || status == SYM_STOP_EVENT
                     || status == SYM_STOP_OUTPUT))
     symmex_sol_restart (plhs[0], &st, a.opts);
+}
+
+void
+symmex_run (const symmex_method *m, int nlhs, mxArray *plhs[], int nrhs,
+            const mxArray *prhs[])
+{
+  /* a run from inside a user's function (nested) has a list of its own;
+     the outer run's comes back when it ends (one that an error cut short
+     went with its call) */
+  core_block *outer = core_blocks;
+  core_blocks = NULL;
+  run (m, nlhs, plhs, nrhs, prhs);
+  core_blocks = outer;
 }

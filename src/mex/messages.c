@@ -262,6 +262,9 @@ raise (const char *fn, const char *id, const char *fmt, va_list ap)
 {
   char msg[2048];
   vsnprintf (msg, sizeof msg, fmt, ap);
+  /* an error leaves this call: what the core holds goes first */
+  if (fn[0] == 'e')
+    symmex_release_core ();
   mxArray *args[3] = { mxCreateString (id), mxCreateString ("%s"),
                        mxCreateString (msg) };
   mexCallMATLAB (0, NULL, 3, args, fn);

@@ -53,6 +53,7 @@ field_as_given (const char *solver, const mxArray *s, const char *name)
         found = i;
         v = vi;
       }
+  symmex_settle (v);
   return v;
 }
 

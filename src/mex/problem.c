@@ -127,6 +127,7 @@ symmex_call_first (symmex_ctx *c, mxArray **out, int nargs, mxArray **args,
                      ? mxGetField (v, 0, "symplectic_error__") : NULL;
   if (! e)
     {
+      symmex_settle (v);
       out[0] = v ? mxDuplicateArray (v) : NULL;
       mxDestroyArray (res);
       return;
@@ -243,8 +244,12 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess, int keep_f0)
           mxDestroyArray (ex);
           out[0] = out[1] = NULL;
         }
-      else if (out[1] && ! mxIsEmpty (out[1]))
-        have2 = 1;
+      else
+        {
+          symmex_settle (out[0]);
+          symmex_settle (out[1]);
+          have2 = out[1] && ! mxIsEmpty (out[1]);
+        }
     }
   if (! out[0])
     symmex_call_first (c, out, c->nargs, c->args, "FCN", c->second_order

@@ -451,6 +451,9 @@ int symmex_is_vector (const mxArray *a);
    and values returned by the user's functions are taken as their full
    equivalents. */
 mxArray *symmex_full (const mxArray *a);
+/* a's data asked for before anything else of it (values.c: what Octave
+   leaks otherwise); every value from Octave goes through it first */
+void symmex_settle (const mxArray *a);
 
 /* Octave's mexErrMsgIdAndTxt and mexWarnMsgIdAndTxt put "NAME: " (the
    running MEX function's name) in front of every message, and ours already
@@ -459,6 +462,8 @@ mxArray *symmex_full (const mxArray *a);
    message reads as written.  Every mexErrMsgIdAndTxt/mexWarnMsgIdAndTxt of
    the MEX layer goes through them. */
 void symmex_err (const char *id, const char *fmt, ...);
+/* frees every block the core holds (entry.c): before an error */
+void symmex_release_core (void);
 void symmex_warn (const char *id, const char *fmt, ...);
 #ifndef SYMMEX_NO_REDIRECT
 #define mexErrMsgIdAndTxt symmex_err
