@@ -127,8 +127,8 @@ symmex_call_first (symmex_ctx *c, mxArray **out, int nargs, mxArray **args,
                      ? mxGetField (v, 0, "symplectic_error__") : NULL;
   if (! e)
     {
-      symmex_settle (v);
       out[0] = v ? mxDuplicateArray (v) : NULL;
+      symmex_settle (out[0]);
       mxDestroyArray (res);
       return;
     }
