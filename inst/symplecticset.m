@@ -79,22 +79,16 @@
 ## @qcode{"on"}: @code{sol} keeps each step's dense output, which
 ## @code{symdeval} evaluates at any time.  Default @qcode{"off"}.
 ## @item Constraints
-## odeSV: handle @code{g = con (q)} of the holonomic constraints
-## g(q) = 0 (m < d values at the d positions), or @code{[g, G] = con (q)}
-## with G = dg/dq (m-by-d, full or sparse, taken as full); without G,
-## central differences.  The steps are RATTLE's (order 2, symmetric,
-## symplectic on the constraints), fixed steps with @code{Separable} or
-## @code{SecondOrder} on.  Default: none.
+## @code{odeSV}: handle @code{g = con (q)} (or @code{[g, G] = con (q)},
+## G = dg/dq) of holonomic constraints g(q) = 0; RATTLE steps
+## (@code{help odeSV}).  Default: none.
 ## @item Ensemble, Parallel
 ## @qcode{"on"}: the columns of @var{y0} are the initial states of
 ## members integrated together; the number of local processes to split
 ## them across, or the connections @code{pconnect} returned (package
 ## @code{parallel}; any other value is an error).  Default
-## @qcode{"off"}, 1.  A local process that dies holding members (FCN
-## calls @code{exit}, a crash, a signal) ends the call within about a
-## second with the error @code{symplectic:parallel-worker} naming them
-## and how the process ended; the package's processes are ended and
-## reaped then, and the next run starts new ones.
+## @qcode{"off"}, 1.  A process that dies holding members ends the call
+## with the error @code{symplectic:parallel-worker} naming them.
 ## @item TangentMap, Indicators
 ## @code{odeSE}, @code{odeSV}: @qcode{"on"} (or a 2d-by-k V0) gives
 ## Phi = dy_k/dy_0 (Phi*V0) in @code{sol.phi}; @qcode{"lyapunov"} the
