@@ -150,6 +150,7 @@ bench: setup
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_ensemble.m
 	$(MAKE) --no-print-directory bench-core
 	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" bench/run_compiled.m
+	$(OCTAVE) --norc --no-gui --path "$(DEVPATH):$(CURDIR)/bench" --eval tangent_cost
 
 # The core alone, compiled as the gateways are (-O2) and linked with the
 # LAPACK and BLAS Octave links.
