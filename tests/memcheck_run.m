@@ -234,6 +234,11 @@ function status = memcheck_run ()
   nbad += check (t(end) < 1, "odeSV", "reversible, a density that vanishes");
   nbad += expect_error (@odeSE, "Octave:invalid-input-arg", kep, [0 1], y0k, rev);
 
+  ## a run inside FCN that fails mid-run, its error caught there; then
+  ## the outer run's own error frees the outer run's blocks, not the
+  ## inner run's (which Octave freed)
+  nbad += expect_error (@odeSPVI, "Octave:invalid-input-arg", @mc_nested, [0 1], [1; 0], struct ("TimeStepSize", 0.1));
+
   printf ("memcheck_run: %d unexpected results\n", nbad);
   status = double (nbad > 0);
 
@@ -268,6 +273,22 @@ endfunction
 function [dy, h] = mc_hess2 (t, y)
   dy = [y(2); -y(1)];
   h = eye (2);
+endfunction
+
+function dy = mc_nested (t, y)
+  persistent n = 0;
+  n++;
+  if (n == 2)
+    try
+      odeSPVI (@(t, y) mc_fail_after (t, y, 0.3), [0 1], [1; 0], struct ("TimeStepSize", 0.1));
+    catch
+    end_try_catch
+  endif
+  if (t > 0.5)
+    dy = [1; 2; 3];    # the wrong size: the outer run's own error
+  else
+    dy = [y(2); -y(1)];
+  endif
 endfunction
 
 function dy = mc_fail_after (t, y, tf)

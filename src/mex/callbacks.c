@@ -187,10 +187,12 @@ void
 symmex_call (int nout, mxArray **out, int nargs, mxArray **args,
            const char *name)
 {
+  void *mark = symmex_core_mark ();
   if (name[0])
     mexCallMATLAB (nout, out, nargs - 1, args + 1, name);
   else
     mexCallMATLAB (nout, out, nargs, args, "feval");
+  symmex_core_back (mark);
   for (int i = 0; i < nout; i++)
     symmex_settle (out[i]);
 }

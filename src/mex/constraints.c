@@ -163,7 +163,9 @@ symmex_constraints (symmex_ctx *c, symmex_args *a, const sym_system *sys)
   int has_G = 0;
   if (nout != 1)
     {
+      void *mark = symmex_core_mark ();
       mxArray *ex = mexCallMATLABWithTrap (2, out, 2, k->args, "feval");
+      symmex_core_back (mark);
       if (ex)
         {
           mxDestroyArray (ex);

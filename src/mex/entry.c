@@ -128,6 +128,18 @@ core_free (void *ptr)
   mxFree (b);
 }
 
+void *
+symmex_core_mark (void)
+{
+  return core_blocks;
+}
+
+void
+symmex_core_back (void *mark)
+{
+  core_blocks = mark;
+}
+
 void
 symmex_release_core (void)
 {

@@ -117,7 +117,9 @@ symmex_call_first (symmex_ctx *c, mxArray **out, int nargs, mxArray **args,
   in[nargs + 2] = mxCreateString ("UniformOutput");
   in[nargs + 3] = mxCreateLogicalScalar (0);
   mxArray *res = NULL;
+  void *mark = symmex_core_mark ();
   mexCallMATLAB (1, &res, nin - 1, in, "cellfun");
+  symmex_core_back (mark);
   for (int i = 1; i < nargs; i++)
     mxDestroyArray (cells[i]);
   for (int i = nargs; i < nin - 1; i++)
@@ -237,8 +239,10 @@ probe_fcn (symmex_ctx *c, const symmex_args *a, int probe_hess, int keep_f0)
   int have2 = 0;
   if (probe_hess)
     {
+      void *mark = symmex_core_mark ();
       mxArray *ex = mexCallMATLABWithTrap (2, out, c->nargs, c->args,
                                            "feval");
+      symmex_core_back (mark);
       if (ex)
         {
           mxDestroyArray (ex);

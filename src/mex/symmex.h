@@ -464,6 +464,12 @@ void symmex_settle (const mxArray *a);
 void symmex_err (const char *id, const char *fmt, ...);
 /* frees every block the core holds (entry.c): before an error */
 void symmex_release_core (void);
+/* the list of the run's core blocks, and put back: a user's function
+   that catches the error of a nested run returns with that run's list
+   (its blocks freed by Octave) in place of its caller's, so every call
+   of user code puts the caller's back when it returns */
+void *symmex_core_mark (void);
+void symmex_core_back (void *mark);
 void symmex_warn (const char *id, const char *fmt, ...);
 #ifndef SYMMEX_NO_REDIRECT
 #define mexErrMsgIdAndTxt symmex_err
